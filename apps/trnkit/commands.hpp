@@ -1,0 +1,11 @@
+#pragma once
+// Each subcommand of the trnkit CLI lives in its own cmd_*.cpp and registers itself here.
+#include <CLI/CLI.hpp>
+
+namespace trn::cli {
+
+void add_devices_command(CLI::App& app);
+void add_sobel_command(CLI::App& app);
+void add_score_command(CLI::App& app);
+
+}  // namespace trn::cli

@@ -1,0 +1,78 @@
+// Argument checks shared by every backend: one set of rules, one set of messages.
+#include "trn/backend.hpp"
+
+#include <cmath>
+#include <string>
+
+namespace trn {
+namespace {
+
+template <typename T>
+void check_view(const ImageView<T>& v, const char* call, const char* what) {
+    if (v.data == nullptr || v.width <= 0 || v.height <= 0)
+        throw Error(std::string(call) + ": " + what + " is empty");
+    if (v.stride < v.width)
+        throw Error(std::string(call) + ": " + what + " stride " + std::to_string(v.stride) +
+                    " is smaller than its width " + std::to_string(v.width));
+}
+
+std::string size_text(int w, int h) { return std::to_string(w) + "x" + std::to_string(h); }
+
+void check_pose(const Pose& p, std::size_t i) {
+    const float fields[4] = {p.x, p.y, p.yaw, p.scale};
+    const char* names[4] = {"x", "y", "yaw", "scale"};
+    for (int k = 0; k < 4; ++k)
+        if (!std::isfinite(fields[k]))
+            throw Error("score: pose " + std::to_string(i) + " has a non-finite " + names[k] + " (" +
+                        std::to_string(fields[k]) + ")");
+    if (!(p.scale > 0))
+        throw Error("score: pose " + std::to_string(i) + " has scale " + std::to_string(p.scale) +
+                    "; it must be > 0");
+}
+
+}  // namespace
+
+MapHandle Backend::upload_map(GrayView map, PhaseTimes* times) {
+    check_view(map, "upload_map", "map");
+    if (map.width < 2 || map.height < 2)
+        throw Error("upload_map: map " + size_text(map.width, map.height) + " is smaller than 2x2");
+    if (times) *times = {};
+    return do_upload_map(map, times);
+}
+
+void Backend::score(const MapHandle& map, const ScoringPlan& plan, std::span<const Pose> poses,
+                    std::span<ParticleScore> out, PhaseTimes* times) {
+    if (times) *times = {};
+    if (!map) throw Error("score: no map; upload one with upload_map first");
+    if (map->owner() != this)
+        throw Error("score: the map was uploaded to another backend than " + info().name);
+    if (plan.sample_count() == 0) throw Error("score: the scoring plan has no samples");
+    if (map->width() < plan.width || map->height() < plan.height)
+        throw Error("score: map " + size_text(map->width(), map->height()) + " is smaller than the template " +
+                    size_text(plan.width, plan.height));
+    if (out.size() < poses.size())
+        throw Error("score: output holds " + std::to_string(out.size()) + " scores for " +
+                    std::to_string(poses.size()) + " poses");
+    for (std::size_t i = 0; i < poses.size(); ++i) check_pose(poses[i], i);
+    if (poses.empty()) return;
+    do_score(*map, plan, poses, out, times);
+}
+
+void Backend::score(const MapHandle& map, const TemplateView& templ, std::span<const Pose> poses,
+                    const ScoreOptions& options, std::span<ParticleScore> out, PhaseTimes* times) {
+    score(map, make_scoring_plan(templ, options), poses, out, times);
+}
+
+void Backend::sobel(GrayView src, Int16View gx, Int16View gy, PhaseTimes* times) {
+    check_view(src, "sobel", "source image");
+    check_view(gx, "sobel", "gx output");
+    check_view(gy, "sobel", "gy output");
+    for (const Int16View* out : {&gx, &gy})
+        if (out->width != src.width || out->height != src.height)
+            throw Error("sobel: output " + size_text(out->width, out->height) + " differs from the source " +
+                        size_text(src.width, src.height));
+    if (times) *times = {};
+    do_sobel(src, gx, gy, times);
+}
+
+}  // namespace trn

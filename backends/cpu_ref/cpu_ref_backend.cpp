@@ -1,0 +1,137 @@
+// cpu-ref: the test oracle. Written to be obviously correct, not fast: every sample is taken one
+// by one, statistics are two-pass in double, nothing is shared with the optimized paths except the
+// sample choice (ScoringPlan points), which is part of the contract.
+#include "cpu_ref_backend.hpp"
+
+#include <cmath>
+#include <vector>
+
+namespace trn {
+namespace {
+
+class RefMap : public MapStorage {
+public:
+    RefMap(const Backend* owner, GrayView v) : MapStorage(owner, v.width, v.height), pixels(std::size_t(v.width) * v.height) {
+        for (int y = 0; y < v.height; ++y)
+            for (int x = 0; x < v.width; ++x) pixels[std::size_t(y) * v.width + x] = v.at(x, y);
+    }
+    std::uint8_t at(int x, int y) const { return pixels[std::size_t(y) * width() + x]; }
+    std::vector<std::uint8_t> pixels;
+};
+
+// Position and bilinear value exactly as scoring.hpp specifies; volatile stores keep the compiler
+// from fusing multiply-adds so each product and sum is rounded to float on its own.
+bool sample(const RefMap& m, const Affine& A, float du, float dv, float& value) {
+    volatile float t1 = A.a * du, t2 = A.b * dv, t3 = A.c * du, t4 = A.d * dv;
+    volatile float sx = A.tx + t1, sy = A.ty + t3;
+    const float px = sx + t2, py = sy + t4;
+    if (!(px >= 0.0f && py >= 0.0f && px <= float(m.width() - 1) && py <= float(m.height() - 1))) return false;
+    int x0 = static_cast<int>(std::floor(px)), y0 = static_cast<int>(std::floor(py));
+    if (x0 > m.width() - 2) x0 = m.width() - 2;
+    if (y0 > m.height() - 2) y0 = m.height() - 2;
+    const float fx = px - float(x0), fy = py - float(y0);
+    const float m00 = m.at(x0, y0), m10 = m.at(x0 + 1, y0), m01 = m.at(x0, y0 + 1), m11 = m.at(x0 + 1, y0 + 1);
+    volatile float dtop = fx * (m10 - m00), dbot = fx * (m11 - m01);
+    volatile float top = m00 + dtop, bot = m01 + dbot;
+    volatile float dv2 = fy * (bot - top);
+    value = top + dv2;
+    return true;
+}
+
+class CpuRefBackend final : public Backend {
+public:
+    CpuRefBackend() {
+        info_ = {"cpu-ref", "cpu-ref", "naive C++ reference", "cpu", "trnkit", "double accumulation, single thread"};
+    }
+    const DeviceInfo& info() const override { return info_; }
+
+protected:
+    MapHandle do_upload_map(GrayView map, PhaseTimes*) override { return std::make_shared<RefMap>(this, map); }
+
+    void do_score(const MapStorage& storage, const ScoringPlan& plan, std::span<const Pose> poses,
+                  std::span<ParticleScore> out, PhaseTimes*) override {
+        const RefMap& map = static_cast<const RefMap&>(storage);
+        const std::size_t count = plan.sample_count();
+        std::vector<double> t, i;
+        t.reserve(count);
+        i.reserve(count);
+        for (std::size_t p = 0; p < poses.size(); ++p) {
+            const Affine A = pose_to_affine(poses[p]);
+            t.clear();
+            i.clear();
+            for (std::size_t k = 0; k < count; ++k) {
+                const int u = plan.dense ? int(k % plan.width) : plan.points[k].u;
+                const int v = plan.dense ? int(k / plan.width) : plan.points[k].v;
+                float value;
+                if (!sample(map, A, float(u) - plan.cx, float(v) - plan.cy, value)) continue;
+                // The template value itself: centred value + mean recovers it to double precision.
+                t.push_back(double(plan.centered[k]) + plan.template_mean);
+                i.push_back(value);
+            }
+            out[p] = score_pairs(t, i, plan.min_valid_samples());
+        }
+    }
+
+    static ParticleScore score_pairs(const std::vector<double>& t, const std::vector<double>& i, std::uint32_t min_valid) {
+        ParticleScore r;
+        const std::size_t n = t.size();
+        r.valid_samples = static_cast<std::uint32_t>(n);
+        if (n == 0 || n < min_valid) {
+            r.flags = kTooFewSamples;
+            return r;
+        }
+        double mt = 0, mi = 0;
+        for (std::size_t k = 0; k < n; ++k) mt += t[k], mi += i[k];
+        mt /= double(n);
+        mi /= double(n);
+        double stt = 0, sii = 0, sti = 0, rtt = 0, rii = 0, rti = 0, rdd = 0;
+        for (std::size_t k = 0; k < n; ++k) {
+            const double a = t[k] - mt, b = i[k] - mi;
+            stt += a * a, sii += b * b, sti += a * b;
+            rtt += t[k] * t[k], rii += i[k] * i[k], rti += t[k] * i[k];
+            rdd += (t[k] - i[k]) * (t[k] - i[k]);
+        }
+        if (stt <= kFlatVariance * double(n)) r.flags |= kFlatTemplate;
+        if (sii <= kFlatVariance * double(n)) r.flags |= kFlatPatch;
+        if (r.flags) return r;
+        const double norm = std::sqrt(rtt * rii);
+        r.ncc = static_cast<float>(sti / std::sqrt(stt * sii));
+        r.cc = static_cast<float>(rti / norm);
+        r.ssd = static_cast<float>(1.0 - rdd / norm);
+        return r;
+    }
+
+    void do_sobel(GrayView src, Int16View gx, Int16View gy, PhaseTimes*) override {
+        const int w = src.width, h = src.height;
+        // Reflect-101 index: -1 -> 1, w -> w-2; a 1-pixel-wide axis maps everything to 0.
+        auto reflect = [](int i, int n) {
+            if (n == 1) return 0;
+            if (i < 0) return -i;
+            if (i >= n) return 2 * n - 2 - i;
+            return i;
+        };
+        static const int kx[3][3] = {{-1, 0, 1}, {-2, 0, 2}, {-1, 0, 1}};
+        static const int ky[3][3] = {{-1, -2, -1}, {0, 0, 0}, {1, 2, 1}};
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                int sx = 0, sy = 0;
+                for (int j = -1; j <= 1; ++j)
+                    for (int i = -1; i <= 1; ++i) {
+                        const int p = src.at(reflect(x + i, w), reflect(y + j, h));
+                        sx += kx[j + 1][i + 1] * p;
+                        sy += ky[j + 1][i + 1] * p;
+                    }
+                gx.at(x, y) = static_cast<std::int16_t>(sx);
+                gy.at(x, y) = static_cast<std::int16_t>(sy);
+            }
+    }
+
+private:
+    DeviceInfo info_;
+};
+
+}  // namespace
+
+std::unique_ptr<Backend> make_cpu_ref_backend() { return std::make_unique<CpuRefBackend>(); }
+
+}  // namespace trn

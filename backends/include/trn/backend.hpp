@@ -1,0 +1,73 @@
+#pragma once
+// The one interface every compute backend implements (cpu-ref, cpu, opencl:<n>, vulkan:<n>).
+//
+// Public calls are non-virtual: they check their arguments by one set of rules, then hand over to
+// the backend's do_* implementation, so every backend rejects the same bad input with the same
+// message. Rules for scores are in scoring.hpp; Sobel is bit-exact with
+// cv::Sobel(src, CV_16S, 1, 0 / 0, 1, 3) with BORDER_REFLECT_101.
+// A backend object is not thread-safe: use one per thread. Repeated calls with the same inputs
+// return bit-identical results.
+#include <memory>
+#include <span>
+#include <string>
+
+#include "trn/error.hpp"
+#include "trn/image.hpp"
+#include "trn/scoring.hpp"
+#include "trn/scoring_plan.hpp"
+
+namespace trn {
+
+struct DeviceInfo {
+    std::string name;     // what --backend takes: "cpu-ref", "cpu", "opencl:0", "vulkan:1"
+    std::string family;   // "cpu-ref", "cpu", "opencl", "vulkan"
+    std::string device;   // e.g. "pthread-haswell" or "NVIDIA H100"
+    std::string type;     // "cpu", "gpu", "other"
+    std::string driver;   // platform / driver name and version
+    std::string details;  // free text: compute units, memory, subgroup size ...
+};
+
+class Backend;
+
+// A map uploaded to one backend. Release it by dropping the handle.
+class MapStorage {
+public:
+    MapStorage(const Backend* owner, int width, int height) : owner_(owner), width_(width), height_(height) {}
+    virtual ~MapStorage() = default;
+    int width() const { return width_; }
+    int height() const { return height_; }
+    const Backend* owner() const { return owner_; }
+
+private:
+    const Backend* owner_;
+    int width_, height_;
+};
+using MapHandle = std::shared_ptr<const MapStorage>;
+
+class Backend {
+public:
+    virtual ~Backend() = default;
+    virtual const DeviceInfo& info() const = 0;
+
+    // Copies an 8-bit grey map (any size from 2x2 up to at least 16384x16384) to the backend.
+    MapHandle upload_map(GrayView map, PhaseTimes* times = nullptr);
+
+    // Scores every pose against the plan's template; out.size() must be >= poses.size() and
+    // only the first poses.size() entries are written.
+    void score(const MapHandle& map, const ScoringPlan& plan, std::span<const Pose> poses,
+               std::span<ParticleScore> out, PhaseTimes* times = nullptr);
+    // Convenience: builds the plan from the template and options first.
+    void score(const MapHandle& map, const TemplateView& templ, std::span<const Pose> poses,
+               const ScoreOptions& options, std::span<ParticleScore> out, PhaseTimes* times = nullptr);
+
+    // 3x3 Sobel of src into gx and gy (each src-sized, strides may differ).
+    void sobel(GrayView src, Int16View gx, Int16View gy, PhaseTimes* times = nullptr);
+
+protected:
+    virtual MapHandle do_upload_map(GrayView map, PhaseTimes* times) = 0;
+    virtual void do_score(const MapStorage& map, const ScoringPlan& plan, std::span<const Pose> poses,
+                          std::span<ParticleScore> out, PhaseTimes* times) = 0;
+    virtual void do_sobel(GrayView src, Int16View gx, Int16View gy, PhaseTimes* times) = 0;
+};
+
+}  // namespace trn

@@ -1,0 +1,95 @@
+#pragma once
+// Everything a caller passes to and gets back from batched particle scoring.
+//
+// Geometry (identical on every backend):
+//   A particle pose is (x, y, yaw, scale): the map-pixel position of the template centre, the
+//   heading in radians and the map pixels per template pixel. Template pixel (u, v) with centre
+//   c = ((W-1)/2, (H-1)/2) samples the map at
+//       (x, y) + scale * R(yaw) * (u - cx, v - cy),   R = [cos -sin; sin cos],
+//   so in image coordinates a positive yaw turns the template clockwise on screen. The host turns
+//   each pose into six float affine coefficients (see ScoringPlan) and every backend evaluates
+//   px = tx + a*du + b*dv, py = ty + c*du + d*dv in float without fused multiply-add, so all
+//   backends sample the very same positions.
+//   Map pixel centres are at integer coordinates; sampling is bilinear. A sample is valid when
+//   0 <= px <= mapW-1 and 0 <= py <= mapH-1; other samples are skipped and counted.
+//
+// Scores over the valid samples (T = template, I = sampled map, ' = minus the mean):
+//   ncc = sum T'I' / sqrt(sum T'^2 * sum I'^2)            (Pearson, dissertation eq. 2.15)
+//   cc  = sum T I  / sqrt(sum T^2  * sum I^2)             (eq. 2.14)
+//   ssd = 1 - sum (T-I)^2 / sqrt(sum T^2 * sum I^2)       (eq. 2.13)
+//
+// Invalid particles get every score 0 and a non-zero `flags` (never NaN):
+//   too few samples: valid_samples < min_valid_fraction * sample count;
+//   flat patch / flat template: variance over the valid samples <= kFlatVariance (grey levels^2),
+//   which leaves ncc undefined (cc and ssd are still 0 for such particles, for one simple rule).
+#include <cstdint>
+#include <vector>
+
+namespace trn {
+
+struct Pose {
+    float x = 0, y = 0, yaw = 0, scale = 1;
+};
+
+struct SamplePoint {
+    std::int32_t u = 0, v = 0;  // template pixel
+};
+
+// Which template pixels take part in the score.
+struct Sampling {
+    enum class Kind { Dense, Random, Explicit };
+    Kind kind = Kind::Dense;
+    double fraction = 1.0;          // Random: share of template pixels, (0, 1]
+    std::uint64_t seed = 0;         // Random: same seed -> same pixels on every backend
+    std::vector<SamplePoint> points;  // Explicit: template pixels, each inside the template
+
+    static Sampling dense() { return {}; }
+    static Sampling random(double fraction, std::uint64_t seed) {
+        Sampling s;
+        s.kind = Kind::Random;
+        s.fraction = fraction;
+        s.seed = seed;
+        return s;
+    }
+    static Sampling explicit_points(std::vector<SamplePoint> pts) {
+        Sampling s;
+        s.kind = Kind::Explicit;
+        s.points = std::move(pts);
+        return s;
+    }
+};
+
+struct ScoreOptions {
+    Sampling sampling;
+    double min_valid_fraction = 0.9;  // below this share of valid samples a particle is invalid
+};
+
+enum ScoreFlags : std::uint32_t {
+    kScoreValid = 0,
+    kTooFewSamples = 1u << 0,
+    kFlatPatch = 1u << 1,
+    kFlatTemplate = 1u << 2,
+};
+
+// Variance (in the template's / map's grey-level units squared) at or below which an image is flat.
+inline constexpr double kFlatVariance = 1e-4;
+
+struct ParticleScore {
+    float ncc = 0;
+    float cc = 0;
+    float ssd = 0;
+    std::uint32_t valid_samples = 0;
+    std::uint32_t flags = 0;
+    bool valid() const { return flags == kScoreValid; }
+};
+
+// Wall time of the three phases of one call, in milliseconds, from the backend's own clock
+// (OpenCL profiling events, Vulkan timestamp queries, steady_clock on the CPU).
+struct PhaseTimes {
+    double upload_ms = 0;
+    double execute_ms = 0;
+    double download_ms = 0;
+    double total_ms() const { return upload_ms + execute_ms + download_ms; }
+};
+
+}  // namespace trn

@@ -1,0 +1,52 @@
+#pragma once
+// The host-side preparation shared by every optimized backend: which template pixels are sampled,
+// the template values with their mean removed, and the per-pose affine coefficients. Doing this
+// once on the host keeps the backends' arithmetic identical (same sample set, same positions).
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "trn/scoring.hpp"
+#include "trn/template_view.hpp"
+
+namespace trn {
+
+// px = (tx + a*du) + b*dv ; py = (ty + c*du) + d*dv  with du = u - cx, dv = v - cy (all float,
+// evaluated in this order without fused multiply-add).
+struct Affine {
+    float a, b, c, d, tx, ty;
+};
+Affine pose_to_affine(const Pose& p);
+
+struct ScoringPlan {
+    int width = 0, height = 0;      // template size
+    float cx = 0, cy = 0;           // template centre
+    bool dense = true;              // all W*H pixels in row-major order, `points` empty
+    std::vector<SamplePoint> points;  // sparse: the sampled template pixels (sorted row-major)
+    std::vector<float> centered;    // template value minus template_mean, one per sample, in sample order
+    double template_mean = 0;       // mean over all samples
+    double min_valid_fraction = 0.9;
+
+    std::size_t sample_count() const { return centered.size(); }
+    // Smallest valid-sample count for a valid particle.
+    std::uint32_t min_valid_samples() const;
+};
+
+// Validates the template and options (throws trn::Error naming the argument) and builds the plan.
+ScoringPlan make_scoring_plan(const TemplateView& templ, const ScoreOptions& options);
+
+// The deterministic sparse pixel choice used by Sampling::Kind::Random, exposed for tests.
+std::vector<SamplePoint> random_sample_points(int width, int height, double fraction, std::uint64_t seed);
+
+// Per-particle sums an optimized backend accumulates over its valid samples, with
+// J = sampled map value - shift (shift: the map value at the pose centre, which keeps float sums
+// well conditioned) and T' = plan.centered.
+struct ParticleSums {
+    double n = 0, sj = 0, sjj = 0, sjt = 0, st = 0, stt = 0;
+    double shift = 0;
+};
+
+// Turns the sums into scores and flags by the rules in scoring.hpp.
+ParticleScore finalize_score(const ParticleSums& s, const ScoringPlan& plan);
+
+}  // namespace trn

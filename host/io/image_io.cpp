@@ -1,0 +1,43 @@
+#include "trn/io/image_io.hpp"
+
+#include <filesystem>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "trn/error.hpp"
+
+namespace trn {
+
+GrayImage load_gray(const std::string& path) {
+    if (!std::filesystem::exists(path)) throw Error(path + ": no such file");
+    cv::Mat m;
+    try {
+        m = cv::imread(path, cv::IMREAD_GRAYSCALE);
+    } catch (const cv::Exception& e) {
+        throw Error(path + ": cannot decode image (" + e.msg + ")");
+    }
+    if (m.empty()) throw Error(path + ": not a readable image (corrupt or unsupported format)");
+    GrayImage img{m.cols, m.rows, std::vector<std::uint8_t>(std::size_t(m.cols) * m.rows)};
+    for (int y = 0; y < m.rows; ++y) std::copy_n(m.ptr<std::uint8_t>(y), m.cols, img.pixels.data() + std::size_t(y) * m.cols);
+    return img;
+}
+
+void save_gray(const std::string& path, GrayView image) {
+    const cv::Mat m(image.height, image.width, CV_8UC1, const_cast<std::uint8_t*>(image.data), image.stride);
+    bool ok = false;
+    try {
+        ok = cv::imwrite(path, m);
+    } catch (const cv::Exception& e) {
+        throw Error(path + ": cannot write image (" + e.msg + ")");
+    }
+    if (!ok) throw Error(path + ": cannot write image");
+}
+
+void save_gradient(const std::string& path, ImageView<const std::int16_t> g) {
+    const cv::Mat src(g.height, g.width, CV_16SC1, const_cast<std::int16_t*>(g.data), g.stride * sizeof(std::int16_t));
+    cv::Mat out;
+    src.convertTo(out, CV_8UC1, 1.0 / 8.0, 128.0);
+    save_gray(path, {out.data, out.cols, out.rows, static_cast<std::ptrdiff_t>(out.step)});
+}
+
+}  // namespace trn

@@ -1,0 +1,68 @@
+#include "trn/io/pose_csv.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "trn/error.hpp"
+
+namespace trn {
+namespace {
+
+std::string trim(std::string_view s) {
+    const auto b = s.find_first_not_of(" \t\r");
+    if (b == std::string_view::npos) return {};
+    const auto e = s.find_last_not_of(" \t\r");
+    return std::string(s.substr(b, e - b + 1));
+}
+
+}  // namespace
+
+std::vector<Pose> read_poses_csv(std::istream& in, const std::string& source) {
+    std::vector<Pose> poses;
+    std::string line;
+    int line_no = 0;
+    bool first_content = true;
+    while (std::getline(in, line)) {
+        ++line_no;
+        const std::string t = trim(line);
+        if (t.empty() || t[0] == '#') continue;
+        std::vector<std::string> fields;
+        std::stringstream ss(t);
+        for (std::string f; std::getline(ss, f, ',');) fields.push_back(trim(f));
+        if (first_content) {
+            first_content = false;
+            if (!fields.empty() && fields[0] == "x") {  // header
+                if (fields.size() != 4 || fields[1] != "y" || fields[2] != "yaw" || fields[3] != "scale")
+                    throw Error(source + ":" + std::to_string(line_no) + ": header must be x,y,yaw,scale");
+                continue;
+            }
+        }
+        if (fields.size() != 4)
+            throw Error(source + ":" + std::to_string(line_no) + ": expected 4 fields x,y,yaw,scale, got " +
+                        std::to_string(fields.size()));
+        float v[4];
+        for (int k = 0; k < 4; ++k) {
+            const std::string& f = fields[k];
+            const auto [ptr, ec] = std::from_chars(f.data(), f.data() + f.size(), v[k]);
+            if (ec != std::errc() || ptr != f.data() + f.size() || f.empty())
+                throw Error(source + ":" + std::to_string(line_no) + ": field " + std::to_string(k + 1) + " '" + f +
+                            "' is not a number");
+            if (!std::isfinite(v[k]))
+                throw Error(source + ":" + std::to_string(line_no) + ": field " + std::to_string(k + 1) + " is not finite");
+        }
+        if (!(v[3] > 0)) throw Error(source + ":" + std::to_string(line_no) + ": scale must be > 0");
+        poses.push_back({v[0], v[1], v[2], v[3]});
+    }
+    if (in.bad()) throw Error(source + ": read error");
+    return poses;
+}
+
+std::vector<Pose> read_poses_csv(const std::string& path) {
+    std::ifstream f(path);
+    if (!f) throw Error(path + ": cannot open");
+    return read_poses_csv(f, path);
+}
+
+}  // namespace trn

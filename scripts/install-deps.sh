@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# Installs every Debian 12 package trnkit needs to build, test, benchmark and plot.
+# Idempotent: when everything is already installed it prints nothing and touches nothing.
+set -euo pipefail
+
+packages=(
+  # toolchain
+  build-essential cmake ninja-build pkg-config git ca-certificates
+  # libraries
+  libopencv-dev libeigen3-dev libgtest-dev libgmock-dev libbenchmark-dev
+  libcli11-dev nlohmann-json3-dev libboost-dev
+  # OpenCL: headers, ICD loader, PoCL (CPU device)
+  opencl-headers ocl-icd-opencl-dev pocl-opencl-icd clinfo
+  # Vulkan: loader, lavapipe (CPU device), GLSL -> SPIR-V compiler, validation layer
+  libvulkan-dev mesa-vulkan-drivers glslang-tools vulkan-validationlayers vulkan-tools
+  # fuzzing (libFuzzer via clang) and plots
+  clang libclang-rt-14-dev gnuplot-nox
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  status=$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null || true)
+  [[ "$status" == "install ok installed" ]] || missing+=("$p")
+done
+[[ ${#missing[@]} -eq 0 ]] && exit 0
+
+echo "install-deps: installing ${missing[*]}"
+SUDO=""
+if [[ $(id -u) -ne 0 ]]; then
+  command -v sudo >/dev/null || { echo "install-deps: need root or sudo to install packages" >&2; exit 1; }
+  SUDO=sudo
+fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+echo "install-deps: done"
