@@ -7,5 +7,8 @@ namespace trn::cli {
 void add_devices_command(CLI::App& app);
 void add_sobel_command(CLI::App& app);
 void add_score_command(CLI::App& app);
+void add_frames_command(CLI::App& app);    // cmd_frames.cpp   (energy frame runner)
+void add_energy_command(CLI::App& app);    // cmd_energy.cpp   (energy harness)
+void add_simulate_command(CLI::App& app);  // cmd_simulate.cpp (flight simulator)
 
 }  // namespace trn::cli
