@@ -119,8 +119,8 @@ ParticleScore finalize_score(const ParticleSums& s, const ScoringPlan& plan) {
     const double n = s.n;
     const double var_j = s.sjj - s.sj * s.sj / n;  // n * variance of the patch
     const double var_t = s.stt - s.st * s.st / n;  // n * variance of the template over valid samples
-    if (var_t <= kFlatVariance * n) r.flags |= kFlatTemplate;
-    if (var_j <= kFlatVariance * n) r.flags |= kFlatPatch;
+    if (is_flat(var_t, n, s.st / n)) r.flags |= kFlatTemplate;
+    if (is_flat(var_j, n, s.sj / n + s.shift)) r.flags |= kFlatPatch;
     if (r.flags) return r;
 
     const double ncc = (s.sjt - s.sj * s.st / n) / std::sqrt(var_j * var_t);

@@ -68,11 +68,12 @@ protected:
                 t.push_back(double(plan.centered[k]) + plan.template_mean);
                 i.push_back(value);
             }
-            out[p] = score_pairs(t, i, plan.min_valid_samples());
+            out[p] = score_pairs(t, i, plan.min_valid_samples(), plan.template_mean);
         }
     }
 
-    static ParticleScore score_pairs(const std::vector<double>& t, const std::vector<double>& i, std::uint32_t min_valid) {
+    static ParticleScore score_pairs(const std::vector<double>& t, const std::vector<double>& i, std::uint32_t min_valid,
+                                     double template_mean) {
         ParticleScore r;
         const std::size_t n = t.size();
         r.valid_samples = static_cast<std::uint32_t>(n);
@@ -91,8 +92,8 @@ protected:
             rtt += t[k] * t[k], rii += i[k] * i[k], rti += t[k] * i[k];
             rdd += (t[k] - i[k]) * (t[k] - i[k]);
         }
-        if (stt <= kFlatVariance * double(n)) r.flags |= kFlatTemplate;
-        if (sii <= kFlatVariance * double(n)) r.flags |= kFlatPatch;
+        if (is_flat(stt, double(n), mt - template_mean)) r.flags |= kFlatTemplate;  // mean of the centred values
+        if (is_flat(sii, double(n), mi)) r.flags |= kFlatPatch;
         if (r.flags) return r;
         const double norm = std::sqrt(rtt * rii);
         r.ncc = static_cast<float>(sti / std::sqrt(stt * sii));

@@ -20,8 +20,10 @@
 //
 // Invalid particles get every score 0 and a non-zero `flags` (never NaN):
 //   too few samples: valid_samples < min_valid_fraction * sample count;
-//   flat patch / flat template: variance over the valid samples <= kFlatVariance (grey levels^2),
-//   which leaves ncc undefined (cc and ssd are still 0 for such particles, for one simple rule).
+//   flat patch / flat template: variance over the valid samples <= kFlatVariance + kFlatRelative *
+//   mean^2 (grey levels^2; the template's mean is that of its centred values), which leaves ncc
+//   undefined (cc and ssd are then 0 too, for one simple rule). The relative term absorbs float
+//   rounding of sums (e.g. a single valid sample), so every backend draws the line in the same place.
 #include <cstdint>
 #include <vector>
 
@@ -73,6 +75,11 @@ enum ScoreFlags : std::uint32_t {
 
 // Variance (in the template's / map's grey-level units squared) at or below which an image is flat.
 inline constexpr double kFlatVariance = 1e-4;
+inline constexpr double kFlatRelative = 1e-6;
+// The flatness rule, given n * variance, n and the mean.
+inline bool is_flat(double n_times_var, double n, double mean) {
+    return n_times_var <= n * (kFlatVariance + kFlatRelative * mean * mean);
+}
 
 struct ParticleScore {
     float ncc = 0;

@@ -1,0 +1,68 @@
+#pragma once
+// Comparison and guard-band helpers shared by the conformance cases.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <span>
+#include <vector>
+
+#include "trn/backend.hpp"
+
+namespace trn::conformance {
+
+inline constexpr double kScoreTolerance = 1e-4;
+inline constexpr int kGuard = 16;  // sentinel elements on each side of every output
+
+// Scores for n particles with kGuard sentinel entries before and after.
+class GuardedScores {
+public:
+    explicit GuardedScores(std::size_t n) : buf_(n + 2 * kGuard, sentinel()), n_(n) {}
+    std::span<ParticleScore> out() { return {buf_.data() + kGuard, n_}; }
+    std::span<const ParticleScore> scores() const { return {buf_.data() + kGuard, n_}; }
+    // True when nothing outside out() was written.
+    bool guards_intact() const {
+        for (std::size_t i = 0; i < buf_.size(); ++i)
+            if ((i < kGuard || i >= kGuard + n_) && std::memcmp(&buf_[i], &sentinel_value(), sizeof(ParticleScore)) != 0)
+                return false;
+        return true;
+    }
+
+private:
+    static const ParticleScore& sentinel_value() {
+        static const ParticleScore s{12345.0f, -777.0f, 999.0f, 0xDEADBEEFu, 0xFEEDFACEu};
+        return s;
+    }
+    static ParticleScore sentinel() { return sentinel_value(); }
+    std::vector<ParticleScore> buf_;
+    std::size_t n_;
+};
+
+// Runs the same scoring on both backends and compares every particle. Returns the dut scores.
+inline std::vector<ParticleScore> score_and_compare(Backend& dut, Backend& ref, GrayView map, const TemplateView& templ,
+                                                    std::span<const Pose> poses, const ScoreOptions& options) {
+    const ScoringPlan plan = make_scoring_plan(templ, options);
+    GuardedScores got(poses.size()), want(poses.size());
+    dut.score(dut.upload_map(map), plan, poses, got.out());
+    ref.score(ref.upload_map(map), plan, poses, want.out());
+    EXPECT_TRUE(got.guards_intact()) << dut.info().name << " wrote outside the score output";
+    int reported = 0;
+    for (std::size_t i = 0; i < poses.size(); ++i) {
+        const ParticleScore &g = got.scores()[i], &w = want.scores()[i];
+        const bool ok = g.valid_samples == w.valid_samples && g.flags == w.flags && std::isfinite(g.ncc) &&
+                        std::isfinite(g.cc) && std::isfinite(g.ssd) && std::fabs(g.ncc - w.ncc) <= kScoreTolerance &&
+                        std::fabs(g.cc - w.cc) <= kScoreTolerance && std::fabs(g.ssd - w.ssd) <= kScoreTolerance;
+        if (!ok && reported++ < 5) {
+            const Pose& p = poses[i];
+            ADD_FAILURE() << "particle " << i << " pose (" << p.x << ", " << p.y << ", yaw " << p.yaw << ", scale " << p.scale
+                          << ") map " << map.width << "x" << map.height << " template " << templ.width << "x" << templ.height
+                          << "\n  " << dut.info().name << ": ncc " << g.ncc << " cc " << g.cc << " ssd " << g.ssd << " valid "
+                          << g.valid_samples << " flags " << g.flags << "\n  cpu-ref: ncc " << w.ncc << " cc " << w.cc << " ssd "
+                          << w.ssd << " valid " << w.valid_samples << " flags " << w.flags;
+        }
+    }
+    if (reported > 5) ADD_FAILURE() << "... " << reported << " mismatching particles in all";
+    return {got.scores().begin(), got.scores().end()};
+}
+
+}  // namespace trn::conformance

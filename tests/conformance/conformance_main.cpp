@@ -1,0 +1,94 @@
+// trn_conformance --backend FAMILY[:DEVICE] [--require] [gtest flags]
+// Registers every case for every selected device and runs them against cpu-ref. A family with no
+// device is reported "NOT AVAILABLE" by name and exits 77 (ctest: skipped), or fails with --require.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstring>
+#include <iostream>
+#include <map>
+#include <memory>
+
+#include "cases.hpp"
+#include "trn/registry.hpp"
+
+namespace {
+
+constexpr int kNotAvailable = 77;
+
+std::string test_suite_name(const std::string& device) {
+    std::string s = "conformance_" + device;
+    std::replace(s.begin(), s.end(), ':', '_');
+    std::replace(s.begin(), s.end(), '-', '_');
+    return s;
+}
+
+class CaseTest : public testing::Test {
+public:
+    CaseTest(std::shared_ptr<trn::Backend> dut, std::shared_ptr<trn::Backend> ref, const trn::conformance::Case* c)
+        : dut_(std::move(dut)), ref_(std::move(ref)), case_(c) {}
+    void TestBody() override { case_->run(*dut_, *ref_); }
+
+private:
+    std::shared_ptr<trn::Backend> dut_, ref_;
+    const trn::conformance::Case* case_;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    std::string spec;
+    bool require = false;
+    std::vector<char*> rest = {argv[0]};
+    for (int i = 1; i < argc; ++i) {
+        if (!std::strcmp(argv[i], "--backend") && i + 1 < argc) spec = argv[++i];
+        else if (!std::strcmp(argv[i], "--require")) require = true;
+        else rest.push_back(argv[i]);
+    }
+    if (spec.empty()) {
+        std::cerr << "usage: trn_conformance --backend FAMILY[:DEVICE] [--require] [gtest flags]\n";
+        return 2;
+    }
+    const std::string family = spec.substr(0, spec.find(':'));
+    if (family == "cpu-ref") {
+        std::cerr << "cpu-ref is the oracle every backend is compared with; it is checked against OpenCV and "
+                     "closed-form cases by trn_unit_tests\n";
+        return 2;
+    }
+
+    const trn::BackendRegistry& registry = trn::default_registry();
+    std::vector<trn::DeviceInfo> devices;
+    std::string why = "not built into this trnkit";
+    for (const trn::FamilyStatus& s : registry.status())
+        if (s.family == family) {
+            why = s.why_none;
+            for (const trn::DeviceInfo& d : s.devices)
+                if (spec == family || d.name == spec) devices.push_back(d);
+            if (!s.devices.empty() && devices.empty()) why = "no device named " + spec;
+        }
+    if (devices.empty()) {
+        std::cout << "CONFORMANCE " << spec << ": NOT AVAILABLE (" << why << ")\n";
+        return require ? 1 : kNotAvailable;
+    }
+
+    static std::vector<trn::conformance::Case> cases;
+    for (auto&& group : {trn::conformance::ncc_cases(), trn::conformance::sobel_cases(), trn::conformance::error_cases()})
+        cases.insert(cases.end(), group.begin(), group.end());
+
+    std::shared_ptr<trn::Backend> ref = registry.create("cpu-ref");
+    for (const trn::DeviceInfo& d : devices) {
+        std::shared_ptr<trn::Backend> dut = registry.create(d.name);
+        std::cout << "CONFORMANCE " << d.name << ": " << d.device << " [" << d.type << "] (" << d.driver << "), "
+                  << cases.size() << " cases against cpu-ref\n";
+        for (const auto& c : cases)
+            testing::RegisterTest(test_suite_name(d.name).c_str(), c.name.c_str(), nullptr, d.name.c_str(), __FILE__, __LINE__,
+                                  [dut, ref, &c]() -> testing::Test* { return new CaseTest(dut, ref, &c); });
+    }
+    int gargc = static_cast<int>(rest.size());
+    testing::InitGoogleTest(&gargc, rest.data());
+    const int rc = RUN_ALL_TESTS();
+    const auto* unit = testing::UnitTest::GetInstance();
+    std::cout << "CONFORMANCE " << spec << ": " << unit->successful_test_count() << " passed, " << unit->failed_test_count()
+              << " failed, " << unit->skipped_test_count() << " skipped\n";
+    return rc;
+}
