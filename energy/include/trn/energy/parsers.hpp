@@ -1,0 +1,65 @@
+#pragma once
+// Readers for the power logs people actually have. Each takes the file's text and a name for
+// messages, returns a PowerTrace in watts and seconds, and throws trn::Error naming
+// "name:line: why" for anything it cannot read. Options are "key=value" pairs (see ENERGY.md);
+// an unknown key is an error, so a typo never silently falls back to a default.
+#include <map>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "trn/energy/trace.hpp"
+
+namespace trn::energy {
+
+using ParseOptions = std::map<std::string, std::string>;
+
+// "key=value" strings (from the CLI) to options; throws on a missing '='.
+ParseOptions parse_option_list(const std::vector<std::string>& items);
+
+// INA219 logs in engineering units. Delimited text with a header naming columns, or headerless
+// with columns=... . Options: columns (comma list overriding the header), time, bus_v, shunt_v,
+// current, power (column names), time_unit (s|ms|us|iso|index), period_s (for time_unit=index),
+// bus_v_unit/shunt_v_unit (V|mV), current_unit (A|mA), power_unit (W|mW), use (vi|power).
+PowerTrace parse_ina219_csv(std::string_view text, const std::string& name, const ParseOptions& options = {});
+// Python-tuple lines "(t, bus_V, current_mA, power_mW)" from Arduino loggers. Options:
+// tick_period_s (the first field is a timer tick, unwrapped at tick_bits, default 16),
+// max_bus_v (default 16: rows above it are glitches and dropped).
+PowerTrace parse_ina219_tuples(std::string_view text, const std::string& name, const ParseOptions& options = {});
+// INA219 raw register logs: header time_s,shunt,bus[,current][,power]; see ina219.hpp for the
+// decode and options.
+PowerTrace parse_ina219_raw(std::string_view text, const std::string& name, const ParseOptions& options = {});
+// nvidia-smi --query-gpu=timestamp,...,power.draw --format=csv[,nounits] [-lms N]. Options:
+// column (default power.draw.instant when present, else power.draw), gpu (index or uuid value).
+PowerTrace parse_nvidia_smi(std::string_view text, const std::string& name, const ParseOptions& options = {});
+// tegrastats (TX1/TX2 "VDD_IN 3566/3566", Nano "POM_5V_IN 920/920", Xavier/Orin "VDD_IN
+// 5542mW/5542mW"). Options: rail (default: the input rail VDD_IN / POM_5V_IN; "sum" adds all
+// rails), interval_ms (used when lines carry no time stamp; default 1000).
+PowerTrace parse_tegrastats(std::string_view text, const std::string& name, const ParseOptions& options = {});
+// PMT dumps: header "timestamp <sensor columns>", then "<t> <W>..." and `M <t> "label"` markers.
+// Options: column (default: a column named *instant*, else the first).
+PowerTrace parse_pmt(std::string_view text, const std::string& name, const ParseOptions& options = {});
+// kentcz/rapl-tools AppPowerMeter CSV: headerless pkg_W,pp0_W,pp1_W,dram_W,elapsed_s.
+// Options: domain (pkg|pp0|pp1|dram, default pkg).
+PowerTrace parse_rapl_tools_csv(std::string_view text, const std::string& name, const ParseOptions& options = {});
+// rapl-tools power.log summary: returns its "Total Energy" in joules (an oracle, not a trace).
+double parse_rapl_tools_total_energy(std::string_view text, const std::string& name);
+// `perf stat -a -e power/energy-pkg/ -x, -I ms`: joules per interval -> interval-mean watts.
+PowerTrace parse_perf_stat(std::string_view text, const std::string& name, const ParseOptions& options = {});
+// Records of "Timestamp: <date>" + hwmon "curr1_input: mA" / "in1_input: mV" lines.
+PowerTrace parse_hwmon_records(std::string_view text, const std::string& name, const ParseOptions& options = {});
+// trnkit's own log (written by the sysfs sampler and the INA219 simulator's decode):
+// "# trnkit-power v1 kind=instant|interval-mean ..." then t_s,power_w lines.
+PowerTrace parse_trnkit_power(std::string_view text, const std::string& name, const ParseOptions& options = {});
+
+// Every format above by name; "auto" recognises a format from the text or refuses, saying why.
+std::vector<std::string> power_log_formats();
+std::string detect_power_log_format(std::string_view text, const std::string& name);
+PowerTrace parse_power_log(std::string_view text, const std::string& name, const std::string& format = "auto",
+                           const ParseOptions& options = {});
+PowerTrace read_power_log(const std::string& path, const std::string& format = "auto", const ParseOptions& options = {});
+
+// Writes a trace in trnkit's own format (parse_trnkit_power reads it back exactly).
+std::string format_trnkit_power(const PowerTrace& trace);
+
+}  // namespace trn::energy

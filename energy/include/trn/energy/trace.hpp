@@ -1,0 +1,58 @@
+#pragma once
+// A power trace as every parser and sampler returns it: times in seconds, power in watts, and
+// the hygiene notes (dropped rows, glitches, assumptions) a reader needs to trust the numbers.
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace trn::energy {
+
+// How one sample relates to time.
+enum class SampleKind {
+    Instant,       // w[i] is the power at t[i] (INA219, nvidia-smi power.draw.instant, tegrastats)
+    IntervalMean,  // w[i] is the mean power over (t[i-1], t[i]] (RAPL, perf stat energy counters)
+};
+
+// A point in time named by a log or by `trnkit frames` (PMT "M" lines, frame starts/ends).
+struct Marker {
+    double t = 0;  // seconds, on the trace's clock
+    std::string label;
+};
+
+struct PowerTrace {
+    std::string source;    // file name, or "sysfs:<path>"
+    std::string format;    // "ina219-csv", "ina219-raw", "nvidia-smi", "tegrastats", "pmt", ...
+    std::string quantity;  // which reading became the power: "VDD_IN", "bus_V*current_mA", ...
+    SampleKind kind = SampleKind::Instant;
+    // IntervalMean only: start of the first sample's interval when the log says it (else t[0] is
+    // only the end of an interval of unknown start and that first sample is not integrated).
+    std::optional<double> first_interval_start;
+    bool wall_clock = false;   // t is UNIX time (CLOCK_REALTIME); otherwise relative seconds
+    std::vector<double> t;     // seconds, strictly increasing
+    std::vector<double> w;     // watts, finite
+    double resolution_w = 0;   // quantisation step of a power reading (LSB), 0 when unknown
+    std::vector<std::string> notes;  // hygiene: dropped rows, glitches, gaps, assumed values
+    std::vector<Marker> markers;     // markers embedded in the log
+
+    std::size_t size() const { return t.size(); }
+};
+
+// What the sample times say about the logger: real rate, gaps and stale repeats.
+struct SamplingReport {
+    std::size_t samples = 0;
+    double duration_s = 0;
+    double median_dt_s = 0;
+    double rate_hz = 0;            // 1 / median_dt
+    std::size_t gaps = 0;          // intervals longer than 3 x median_dt
+    double longest_gap_s = 0;
+    std::size_t stale_repeats = 0;  // consecutive identical power values (a logger re-reading a stale register)
+};
+
+SamplingReport describe_sampling(const PowerTrace& trace);
+
+// Throws trn::Error naming the source when the trace cannot be integrated: fewer than two
+// samples, times not strictly increasing, or a non-finite value.
+void validate_trace(const PowerTrace& trace);
+
+}  // namespace trn::energy

@@ -1,0 +1,90 @@
+// Format names, recognition of a log from its text, and reading a log file.
+#include <fstream>
+#include <sstream>
+
+#include "text_input.hpp"
+#include "trn/energy/parsers.hpp"
+
+namespace trn::energy {
+
+ParseOptions parse_option_list(const std::vector<std::string>& items) {
+    ParseOptions o;
+    for (const auto& item : items) {
+        const auto eq = item.find('=');
+        if (eq == std::string::npos || eq == 0) throw Error("--opt '" + item + "': expected KEY=VALUE");
+        o[item.substr(0, eq)] = item.substr(eq + 1);
+    }
+    return o;
+}
+
+std::vector<std::string> power_log_formats() {
+    return {"ina219-csv", "ina219-tuples", "ina219-raw", "nvidia-smi", "tegrastats", "pmt", "rapl-tools",
+            "perf-stat", "hwmon-records", "trnkit"};
+}
+
+std::string detect_power_log_format(std::string_view input, const std::string& name) {
+    const auto lines = text::split_lines(input);
+    std::size_t first = 0;
+    while (first < lines.size() && text::trim(lines[first].text).empty()) ++first;
+    if (first == lines.size()) throw Error(name + ": empty file");
+    const std::string_view l = text::trim(lines[first].text);
+    if (text::starts_with(l, "# trnkit-power")) return "trnkit";
+    if (text::starts_with(l, "# SIMULATED INA219")) return "ina219-raw";
+    for (const auto& line : lines) {  // a raw register header after comments
+        const auto s = text::trim(line.text);
+        if (s.empty() || s.front() == '#') continue;
+        if (text::lower(s).rfind("time_s,shunt,bus", 0) == 0) return "ina219-raw";
+        break;
+    }
+    if (text::starts_with(l, "timestamp") && l.find("power.draw") != std::string_view::npos) return "nvidia-smi";
+    if (text::starts_with(l, "timestamp ") && l.find(',') == std::string_view::npos) return "pmt";
+    if (l.front() == '(') return "ina219-tuples";
+    if (text::starts_with(l, "Timestamp:")) return "hwmon-records";
+    const std::size_t probe = std::min<std::size_t>(lines.size(), 50);
+    for (std::size_t i = first; i < probe; ++i) {
+        const auto s = lines[i].text;
+        if (s.find("RAM ") != std::string_view::npos &&
+            (s.find("VDD_") != std::string_view::npos || s.find("POM_") != std::string_view::npos || s.find("VIN_") != std::string_view::npos))
+            return "tegrastats";
+        if (s.find(",Joules,") != std::string_view::npos) return "perf-stat";
+    }
+    for (const auto& line : lines)
+        if (text::starts_with(text::trim(line.text), "Total Energy:"))
+            text::fail(name, line.number, "a rapl-tools summary (power.log), not a power trace; it holds only the run's total energy");
+    if (l.find("----vbat") != std::string_view::npos || l.find("vin:") != std::string_view::npos)
+        text::fail(name, lines[first].number, "free-text charger log with no time stamps: no power trace can be built from it");
+    const auto fields = text::split(l, ',');
+    bool all_numbers = fields.size() == 5;
+    for (auto f : fields) all_numbers = all_numbers && text::to_number(f).has_value();
+    if (all_numbers) return "rapl-tools";
+    if (fields.size() >= 2) return "ina219-csv";
+    text::fail(name, lines[first].number, "unrecognised power log (first line '" + std::string(l.substr(0, 80)) +
+                                              "'); name the format with --format (" + "see trnkit energy formats)");
+}
+
+PowerTrace parse_power_log(std::string_view input, const std::string& name, const std::string& format, const ParseOptions& options) {
+    const std::string f = format == "auto" ? detect_power_log_format(input, name) : format;
+    if (f == "ina219-csv") return parse_ina219_csv(input, name, options);
+    if (f == "ina219-tuples") return parse_ina219_tuples(input, name, options);
+    if (f == "ina219-raw") return parse_ina219_raw(input, name, options);
+    if (f == "nvidia-smi") return parse_nvidia_smi(input, name, options);
+    if (f == "tegrastats") return parse_tegrastats(input, name, options);
+    if (f == "pmt") return parse_pmt(input, name, options);
+    if (f == "rapl-tools") return parse_rapl_tools_csv(input, name, options);
+    if (f == "perf-stat") return parse_perf_stat(input, name, options);
+    if (f == "hwmon-records") return parse_hwmon_records(input, name, options);
+    if (f == "trnkit") return parse_trnkit_power(input, name, options);
+    std::string list;
+    for (const auto& n : power_log_formats()) list += (list.empty() ? "" : ", ") + n;
+    throw Error("--format '" + format + "': unknown (known: auto, " + list + ")");
+}
+
+PowerTrace read_power_log(const std::string& path, const std::string& format, const ParseOptions& options) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error(path + ": cannot open");
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    return parse_power_log(ss.str(), path, format, options);
+}
+
+}  // namespace trn::energy

@@ -1,0 +1,38 @@
+#pragma once
+// Shared reading helpers for the log parsers: lines with numbers (CRLF tolerated), strict
+// number parsing (no NaN/inf), date/time parsing, and errors that name file:line.
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "trn/error.hpp"
+
+namespace trn::energy::text {
+
+struct Line {
+    std::size_t number = 0;  // 1-based
+    std::string_view text;   // without the line ending
+};
+
+std::vector<Line> split_lines(std::string_view text);
+std::string_view trim(std::string_view s);
+std::vector<std::string_view> split(std::string_view s, char sep);
+std::vector<std::string_view> split_ws(std::string_view s);
+std::string lower(std::string_view s);
+bool starts_with(std::string_view s, std::string_view prefix);
+
+// A finite number, or nullopt; the whole (trimmed) field must be consumed.
+std::optional<double> to_number(std::string_view field);
+// Seconds since 1970-01-01 for a proleptic-Gregorian civil date (UTC).
+double civil_to_unix(int year, int month, int day, int hour, int minute, double second);
+
+// "2026-03-18T12:09:03+05:30", "2026-03-18 12:09:03.5Z", "2024/10/30 18:42:33.189",
+// "10-01-2025 20:05:55" (MM-DD-YYYY, tegrastats). Returns UNIX seconds; zone-less stamps are
+// taken as UTC and *zone_known is set false.
+std::optional<double> parse_datetime(std::string_view s, bool* zone_known = nullptr);
+
+[[noreturn]] void fail(const std::string& source, std::size_t line, const std::string& why);
+
+}  // namespace trn::energy::text

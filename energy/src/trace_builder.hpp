@@ -1,0 +1,55 @@
+#pragma once
+// Collects samples for a parser: refuses a time that goes backwards (names the line), counts
+// rows dropped for a reason and turns the counts into the trace's notes.
+#include <map>
+#include <string>
+
+#include "text_input.hpp"
+#include "trn/energy/trace.hpp"
+
+namespace trn::energy {
+
+class TraceBuilder {
+public:
+    TraceBuilder(std::string source, std::string format) {
+        trace_.source = std::move(source);
+        trace_.format = std::move(format);
+    }
+    PowerTrace& trace() { return trace_; }
+
+    // Adds a sample; a time equal to the previous one is dropped as a duplicate stamp, an
+    // earlier one is an error (the log is out of order or the clock stepped back).
+    void add(std::size_t line, double t, double w) {
+        if (!trace_.t.empty() && t <= trace_.t.back()) {
+            if (t == trace_.t.back()) {
+                drop(line, "same time stamp as the row before");
+                return;
+            }
+            text::fail(trace_.source, line, "time goes backwards (" + std::to_string(t) + " s after " +
+                                                std::to_string(trace_.t.back()) + " s)");
+        }
+        trace_.t.push_back(t);
+        trace_.w.push_back(w);
+    }
+    void drop(std::size_t line, const std::string& reason) {
+        auto& [count, first] = dropped_[reason];
+        if (count++ == 0) first = line;
+    }
+    void note(std::string text) { trace_.notes.push_back(std::move(text)); }
+
+    PowerTrace finish() {
+        for (const auto& [reason, cf] : dropped_)
+            trace_.notes.push_back("dropped " + std::to_string(cf.first) + " row(s): " + reason + " (first at line " +
+                                   std::to_string(cf.second) + ")");
+        if (trace_.t.size() < 2)
+            throw Error(trace_.source + ": fewer than two usable samples (" + std::to_string(trace_.t.size()) +
+                        ") in this " + trace_.format + " log" + (dropped_.empty() ? "" : "; " + trace_.notes.back()));
+        return std::move(trace_);
+    }
+
+private:
+    PowerTrace trace_;
+    std::map<std::string, std::pair<std::size_t, std::size_t>> dropped_;
+};
+
+}  // namespace trn::energy
