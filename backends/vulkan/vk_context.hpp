@@ -1,0 +1,48 @@
+#pragma once
+// One logical device with its compute queue: what every buffer, pipeline and submission of a
+// Vulkan backend hangs off. Owns the instance it was created from.
+#include <memory>
+#include <string>
+
+#include "vk_instance.hpp"
+
+namespace trn::vk {
+
+class Context {
+public:
+    // Creates device `index` of the instance's physical devices; throws trn::Error naming the reason
+    // (out of range, no compute queue, Vulkan < 1.1, vkCreateDevice failure).
+    Context(std::unique_ptr<Instance> instance, int index);
+    ~Context();
+    Context(const Context&) = delete;
+    Context& operator=(const Context&) = delete;
+
+    const InstanceApi& api() const { return instance_->api(); }
+    VkDevice device() const { return device_; }
+    VkQueue queue() const { return queue_; }
+    std::uint32_t queue_family() const { return static_cast<std::uint32_t>(physical_.compute_family); }
+    const PhysicalDevice& physical() const { return physical_; }
+    const VkPhysicalDeviceLimits& limits() const { return physical_.properties.limits; }
+
+    // Host-visible device-local memory is used directly (lavapipe, integrated GPUs); otherwise data
+    // goes through host-visible staging buffers and copy commands. TRN_VULKAN_FORCE_STAGING=1 forces
+    // the staging path (to test it on a unified-memory device).
+    bool unified_memory() const { return unified_; }
+
+    // Index of a memory type allowed by type_bits with all `required` flags, preferring `preferred`.
+    // Throws trn::Error naming `what` when none fits.
+    std::uint32_t memory_type(std::uint32_t type_bits, VkMemoryPropertyFlags required, VkMemoryPropertyFlags preferred,
+                              const char* what) const;
+
+    // Throws trn::Error quoting every validation message recorded since the last call (naming `call`).
+    void throw_on_validation_messages(const char* call);
+
+private:
+    std::unique_ptr<Instance> instance_;
+    PhysicalDevice physical_;
+    VkDevice device_ = VK_NULL_HANDLE;
+    VkQueue queue_ = VK_NULL_HANDLE;
+    bool unified_ = false;
+};
+
+}  // namespace trn::vk

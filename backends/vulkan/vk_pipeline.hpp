@@ -1,0 +1,63 @@
+#pragma once
+// Compute kernels: a SPIR-V module with its descriptor set layout (storage buffers only), push
+// constant block and one descriptor set, plus pipelines specialized per set of specialization
+// constants (created on first use, kept for the kernel's life). A VkPipelineCache persisted on
+// disk makes later runs skip the driver's shader compilation.
+#include <cstdint>
+#include <map>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "vk_context.hpp"
+
+namespace trn::vk {
+
+class PipelineCache {
+public:
+    // Loads the cache file for this device when present (see cache_path()).
+    explicit PipelineCache(Context& context);
+    // Writes the cache back (atomically; a failure to write is ignored: it is only a cache).
+    ~PipelineCache();
+    VkPipelineCache handle() const { return cache_; }
+    // $TRN_VULKAN_PIPELINE_CACHE_DIR, else $XDG_CACHE_HOME/trnkit, else $HOME/.cache/trnkit, plus a
+    // file name made of the vendor, device and pipeline-cache UUID. Empty: no persistence.
+    const std::string& path() const { return path_; }
+
+private:
+    Context& context_;
+    VkPipelineCache cache_ = VK_NULL_HANDLE;
+    std::string path_;
+};
+
+class Kernel {
+public:
+    // binding_counts[i]: descriptor count of storage-buffer binding i.
+    Kernel(Context& context, PipelineCache& cache, std::span<const std::uint32_t> spirv, std::string name,
+           std::vector<std::uint32_t> binding_counts, std::uint32_t push_constant_bytes);
+    ~Kernel();
+    Kernel(const Kernel&) = delete;
+    Kernel& operator=(const Kernel&) = delete;
+
+    // The pipeline for specialization constants 0..n-1 = spec (all 32-bit).
+    VkPipeline pipeline(const std::vector<std::uint32_t>& spec);
+    // Points every binding at whole buffers: buffers[i] holds binding_counts[i] entries.
+    void bind(const std::vector<std::vector<VkBuffer>>& buffers);
+    // Records bind pipeline + descriptor set + push constants + dispatch.
+    void record_dispatch(VkCommandBuffer cmd, VkPipeline pipeline, const void* push, std::uint32_t gx, std::uint32_t gy = 1);
+
+private:
+    Context& context_;
+    PipelineCache& cache_;
+    std::string name_;
+    std::vector<std::uint32_t> binding_counts_;
+    std::uint32_t push_bytes_;
+    VkShaderModule module_ = VK_NULL_HANDLE;
+    VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;
+    VkPipelineLayout layout_ = VK_NULL_HANDLE;
+    VkDescriptorPool pool_ = VK_NULL_HANDLE;
+    VkDescriptorSet set_ = VK_NULL_HANDLE;
+    std::map<std::vector<std::uint32_t>, VkPipeline> pipelines_;
+};
+
+}  // namespace trn::vk

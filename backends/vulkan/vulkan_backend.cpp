@@ -1,0 +1,141 @@
+// Vulkan backend: device setup, kernels and map upload. Scoring is in vulkan_score.cpp, Sobel in
+// vulkan_sobel.cpp.
+#include "vulkan_backend.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+
+#include "ncc_score_shared.h"
+#include "ncc_score_subgroup.h"
+#include "sobel3x3.h"
+#include "vulkan_backend_impl.hpp"
+
+namespace trn {
+namespace vk {
+namespace {
+
+// Largest power of two <= v (v >= 1).
+std::uint32_t floor_pow2(std::uint32_t v) {
+    std::uint32_t p = 1;
+    while (p * 2 <= v) p *= 2;
+    return p;
+}
+
+// Work-group size for scoring: $TRN_VULKAN_WORKGROUP when set (power of two, for tuning), else 64
+// on CPU devices (lavapipe runs a group on one thread) and 256 on GPUs; always within the limits.
+std::uint32_t choose_score_group_size(const Context& ctx) {
+    std::uint32_t want = ctx.physical().properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? 64 : 256;
+    if (const char* env = std::getenv("TRN_VULKAN_WORKGROUP"); env && *env) {
+        const long v = std::strtol(env, nullptr, 10);
+        if (v < 1 || v > 1024 || (v & (v - 1)) != 0)
+            throw Error(std::string("vulkan: TRN_VULKAN_WORKGROUP=") + env + " is not a power of two in [1, 1024]");
+        want = static_cast<std::uint32_t>(v);
+    }
+    const auto& lim = ctx.limits();
+    return floor_pow2(std::min({want, lim.maxComputeWorkGroupInvocations, lim.maxComputeWorkGroupSize[0]}));
+}
+
+}  // namespace
+
+VulkanBackend::VulkanBackend(int index)
+    : context_(std::make_shared<Context>(std::make_unique<Instance>(validation_requested()), index)) {
+    Context& ctx = *context_;
+    info_ = ctx.physical().info;
+    info_.details += std::string(", ") + (ctx.unified_memory() ? "unified memory (mapped device buffers)" : "staging buffers");
+    cache_ = std::make_unique<PipelineCache>(ctx);
+    recorder_ = std::make_unique<Recorder>(ctx);
+
+    const bool subgroups = ctx.physical().subgroup_arithmetic();
+    const std::span<const std::uint32_t> ncc_code =
+        subgroups ? std::span<const std::uint32_t>(ncc_score_subgroup) : std::span<const std::uint32_t>(ncc_score_shared);
+    // Bindings: sample table, affines, sums, map bands.
+    ncc_kernel_ = std::make_unique<Kernel>(ctx, *cache_, ncc_code, subgroups ? "ncc_score (subgroup reduction)" : "ncc_score (shared-memory reduction)",
+                                           std::vector<std::uint32_t>{1, 1, 1, kMaxMapChunks}, 4 * sizeof(std::uint32_t));
+    sobel_kernel_ = std::make_unique<Kernel>(ctx, *cache_, std::span<const std::uint32_t>(sobel3x3), "sobel3x3",
+                                             std::vector<std::uint32_t>{1, 1, 1}, 4 * sizeof(std::uint32_t));
+    score_group_size_ = choose_score_group_size(ctx);
+    sobel_group_x_ = std::min<std::uint32_t>(64, ctx.limits().maxComputeWorkGroupSize[0]);
+    info_.details += ", scoring work-group " + std::to_string(score_group_size_) +
+                     (subgroups ? " with subgroup reduction" : " with shared-memory reduction");
+
+    samples_ = std::make_unique<Mirror>(ctx, "the template sample table");
+    affines_ = std::make_unique<Mirror>(ctx, "the particle affines");
+    sums_ = std::make_unique<Mirror>(ctx, "the particle sums");
+    sobel_src_ = std::make_unique<Mirror>(ctx, "the Sobel source band");
+    sobel_gx_ = std::make_unique<Mirror>(ctx, "the Sobel gx band");
+    sobel_gy_ = std::make_unique<Mirror>(ctx, "the Sobel gy band");
+    ctx.throw_on_validation_messages("creating the Vulkan backend");
+}
+
+VulkanBackend::~VulkanBackend() = default;
+
+void VulkanBackend::barrier_after_upload() {
+    if (!context_->unified_memory())
+        recorder_->barrier(VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                           VK_ACCESS_SHADER_READ_BIT);
+}
+
+void VulkanBackend::barrier_after_execute() {
+    if (context_->unified_memory())
+        recorder_->barrier(VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
+                           VK_ACCESS_HOST_READ_BIT);
+    else
+        recorder_->barrier(VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                           VK_ACCESS_TRANSFER_READ_BIT);
+}
+
+void VulkanBackend::barrier_after_download() {
+    if (!context_->unified_memory())
+        recorder_->barrier(VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
+                           VK_ACCESS_HOST_READ_BIT);
+}
+
+MapHandle VulkanBackend::do_upload_map(GrayView map, PhaseTimes* times) {
+    Context& ctx = *context_;
+    const std::size_t w = static_cast<std::size_t>(map.width), h = static_cast<std::size_t>(map.height);
+    // Bytes one band may hold: the storage-buffer range, capped at 1 GiB per allocation.
+    const std::size_t max_bytes = std::min<std::size_t>(ctx.limits().maxStorageBufferRange, std::size_t(1) << 30) & ~std::size_t(3);
+    auto band_bytes = [&](std::size_t rows) { return (rows * w + 3) & ~std::size_t(3); };
+    auto handle = std::make_shared<VulkanMap>(this, context_, map.width, map.height);
+    std::size_t rows_per_chunk = h, chunk_count = 1;
+    if (band_bytes(h) > max_bytes) {
+        if (max_bytes / w < 3)
+            throw Error("upload_map: map rows of " + std::to_string(w) + " pixels are too wide for " + info_.name);
+        rows_per_chunk = max_bytes / w - 1;  // plus one overlap row
+        chunk_count = (h - 2) / rows_per_chunk + 1;
+        if (chunk_count > kMaxMapChunks)
+            throw Error("upload_map: map " + std::to_string(w) + "x" + std::to_string(h) + " needs " +
+                        std::to_string(chunk_count) + " bands of " + std::to_string(max_bytes) + " bytes on " + info_.name +
+                        " (maxStorageBufferRange); at most " + std::to_string(kMaxMapChunks) + " are supported");
+    }
+    handle->rows_per_chunk = static_cast<std::uint32_t>(rows_per_chunk);
+
+    const auto t0 = Clock::now();
+    VkCommandBuffer cmd = recorder_->begin();
+    recorder_->mark(0);
+    for (std::size_t c = 0; c < chunk_count; ++c) {
+        const std::size_t first = c * rows_per_chunk, rows = std::min(rows_per_chunk + 1, h - first);
+        auto chunk = std::make_unique<Mirror>(ctx, "a map band");
+        chunk->ensure(band_bytes(rows));
+        auto* dst = static_cast<std::uint8_t*>(chunk->host());
+        for (std::size_t y = 0; y < rows; ++y) std::memcpy(dst + y * w, map.row(static_cast<int>(first + y)), w);
+        chunk->record_upload(cmd, band_bytes(rows));
+        handle->chunks.push_back(std::move(chunk));
+    }
+    const double host_ms = ms_since(t0);
+    recorder_->mark(1);
+    barrier_after_upload();
+    recorder_->submit_and_wait("vkQueueSubmit (map upload)");
+    for (auto& chunk : handle->chunks) chunk->drop_staging();
+    if (times) times->upload_ms = host_ms + recorder_->elapsed_ms(0, 1);
+    ctx.throw_on_validation_messages("upload_map");
+    return handle;
+}
+
+}  // namespace vk
+
+std::unique_ptr<Backend> make_vulkan_backend(int index) { return std::make_unique<vk::VulkanBackend>(index); }
+
+}  // namespace trn

@@ -1,0 +1,11 @@
+#pragma once
+#include <memory>
+
+#include "trn/backend.hpp"
+
+namespace trn {
+// The backend on Vulkan physical device `index` (enumeration order, as listed by vulkan_family()).
+// With TRN_VULKAN_VALIDATION=1 the Khronos validation layer is enabled and any message it reports
+// makes the call during or after which it arrived throw trn::Error.
+std::unique_ptr<Backend> make_vulkan_backend(int index);
+}  // namespace trn

@@ -1,0 +1,65 @@
+#pragma once
+// Internal: the Vulkan backend class, shared by vulkan_backend.cpp (setup, maps),
+// vulkan_score.cpp and vulkan_sobel.cpp.
+#include <chrono>
+#include <memory>
+#include <vector>
+
+#include "trn/backend.hpp"
+#include "vk_buffer.hpp"
+#include "vk_context.hpp"
+#include "vk_pipeline.hpp"
+#include "vk_recorder.hpp"
+
+namespace trn::vk {
+
+inline constexpr std::uint32_t kMaxMapChunks = 8;  // TRN_MAX_MAP_CHUNKS in ncc_score.comp
+
+// A map on the device as up to kMaxMapChunks row bands: band c holds rows [c*R, c*R + R] (one row
+// of overlap) so that each band fits the device's maxStorageBufferRange. Keeps the context alive
+// so a map may outlive its backend object safely.
+class VulkanMap : public MapStorage {
+public:
+    VulkanMap(const Backend* owner, std::shared_ptr<Context> context, int width, int height)
+        : MapStorage(owner, width, height), context(std::move(context)) {}
+    std::shared_ptr<Context> context;  // first member: destroyed last
+    std::vector<std::unique_ptr<Mirror>> chunks;
+    std::uint32_t rows_per_chunk = 0;
+};
+
+class VulkanBackend final : public Backend {
+public:
+    explicit VulkanBackend(int index);
+    ~VulkanBackend() override;
+    const DeviceInfo& info() const override { return info_; }
+
+protected:
+    MapHandle do_upload_map(GrayView map, PhaseTimes* times) override;
+    void do_score(const MapStorage& map, const ScoringPlan& plan, std::span<const Pose> poses,
+                  std::span<ParticleScore> out, PhaseTimes* times) override;
+    void do_sobel(GrayView src, Int16View gx, Int16View gy, PhaseTimes* times) override;
+
+private:
+    // Barriers around the transfers of the staging path (no-ops on unified memory).
+    void barrier_after_upload();
+    void barrier_after_execute();
+    void barrier_after_download();
+
+    std::shared_ptr<Context> context_;
+    DeviceInfo info_;
+    std::unique_ptr<PipelineCache> cache_;
+    std::unique_ptr<Recorder> recorder_;
+    std::unique_ptr<Kernel> ncc_kernel_, sobel_kernel_;
+    std::uint32_t score_group_size_ = 64;
+    std::uint32_t sobel_group_x_ = 64, sobel_group_y_ = 1;
+    // Grow-only per-call buffers.
+    std::unique_ptr<Mirror> samples_, affines_, sums_;
+    std::unique_ptr<Mirror> sobel_src_, sobel_gx_, sobel_gy_;
+};
+
+using Clock = std::chrono::steady_clock;
+inline double ms_since(Clock::time_point t0) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+}  // namespace trn::vk

@@ -1,0 +1,99 @@
+// Vulkan batched scoring: host-side sample table and affines, one dispatch with one work-group per
+// particle (ncc_score.comp), then finalize_score on the downloaded sums.
+#include <algorithm>
+#include <cstring>
+
+#include "vulkan_backend_impl.hpp"
+
+namespace trn::vk {
+namespace {
+
+struct ScorePush {  // matches the push_constant block of ncc_score.comp
+    std::uint32_t map_width, map_height, rows_per_chunk, particle_count;
+};
+
+struct GroupSums {  // matches GroupSums in ncc_score.comp (std430)
+    std::uint32_t n;
+    float sj, sjj, sjt, st, stt, shift, unused;
+};
+static_assert(sizeof(GroupSums) == 32);
+
+}  // namespace
+
+void VulkanBackend::do_score(const MapStorage& storage, const ScoringPlan& plan, std::span<const Pose> poses,
+                             std::span<ParticleScore> out, PhaseTimes* times) {
+    Context& ctx = *context_;
+    const auto& map = static_cast<const VulkanMap&>(storage);
+    const std::size_t samples = plan.sample_count(), particles = poses.size();
+    const auto& lim = ctx.limits();
+    const std::size_t max_groups = std::size_t(lim.maxComputeWorkGroupCount[0]) * lim.maxComputeWorkGroupCount[1];
+    if (particles > max_groups)
+        throw Error("score: " + std::to_string(particles) + " poses exceed the " + std::to_string(max_groups) +
+                    " work-groups one dispatch on " + info_.name + " may have; score them in batches");
+    if (samples > 0xFFFFFFFFu / 4) throw Error("score: the plan has too many samples for " + info_.name);
+
+    const auto t0 = Clock::now();
+    samples_->ensure(3 * samples * sizeof(float));
+    affines_->ensure(6 * particles * sizeof(float));
+    sums_->ensure(particles * sizeof(GroupSums));
+    // Sample table: du[S], dv[S], centred template value[S].
+    float* table = static_cast<float*>(samples_->host());
+    for (std::size_t k = 0; k < samples; ++k) {
+        const int u = plan.dense ? static_cast<int>(k % plan.width) : plan.points[k].u;
+        const int v = plan.dense ? static_cast<int>(k / plan.width) : plan.points[k].v;
+        table[k] = static_cast<float>(u) - plan.cx;
+        table[samples + k] = static_cast<float>(v) - plan.cy;
+    }
+    std::memcpy(table + 2 * samples, plan.centered.data(), samples * sizeof(float));
+    float* affine = static_cast<float*>(affines_->host());
+    for (std::size_t i = 0; i < particles; ++i) {
+        const Affine A = pose_to_affine(poses[i]);
+        const float values[6] = {A.a, A.b, A.c, A.d, A.tx, A.ty};
+        std::memcpy(affine + 6 * i, values, sizeof values);
+    }
+    double upload_ms = ms_since(t0);
+
+    std::vector<std::vector<VkBuffer>> bindings{{samples_->device()}, {affines_->device()}, {sums_->device()}, {}};
+    for (std::uint32_t c = 0; c < kMaxMapChunks; ++c)  // unused bands point at the last real one
+        bindings[3].push_back(map.chunks[std::min<std::size_t>(c, map.chunks.size() - 1)]->device());
+    ncc_kernel_->bind(bindings);
+    const VkPipeline pipeline = ncc_kernel_->pipeline(
+        {score_group_size_, static_cast<std::uint32_t>(samples), static_cast<std::uint32_t>(map.chunks.size())});
+    const ScorePush push{static_cast<std::uint32_t>(map.width()), static_cast<std::uint32_t>(map.height()),
+                         map.rows_per_chunk, static_cast<std::uint32_t>(particles)};
+    const std::uint32_t gx = static_cast<std::uint32_t>(std::min<std::size_t>(particles, lim.maxComputeWorkGroupCount[0]));
+    const std::uint32_t gy = static_cast<std::uint32_t>((particles + gx - 1) / gx);
+
+    VkCommandBuffer cmd = recorder_->begin();
+    recorder_->mark(0);
+    samples_->record_upload(cmd, 3 * samples * sizeof(float));
+    affines_->record_upload(cmd, 6 * particles * sizeof(float));
+    barrier_after_upload();
+    recorder_->mark(1);
+    ncc_kernel_->record_dispatch(cmd, pipeline, &push, gx, gy);
+    barrier_after_execute();
+    recorder_->mark(2);
+    sums_->record_download(cmd, particles * sizeof(GroupSums));
+    barrier_after_download();
+    recorder_->mark(3);
+    const auto t_submit = Clock::now();
+    recorder_->submit_and_wait("vkQueueSubmit (score)");
+    const double wall_ms = ms_since(t_submit);
+
+    const auto t1 = Clock::now();
+    const GroupSums* sums = static_cast<const GroupSums*>(sums_->host());
+    for (std::size_t i = 0; i < particles; ++i) {
+        const GroupSums& g = sums[i];
+        const ParticleSums s{double(g.n), g.sj, g.sjj, g.sjt, g.st, g.stt, g.shift};
+        out[i] = finalize_score(s, plan);
+    }
+    if (times) {
+        times->upload_ms = upload_ms + recorder_->elapsed_ms(0, 1);
+        // Devices without timestamps on this queue get the host's view of the submission.
+        times->execute_ms = recorder_->has_timestamps() ? recorder_->elapsed_ms(1, 2) : wall_ms;
+        times->download_ms = recorder_->elapsed_ms(2, 3) + ms_since(t1);
+    }
+    ctx.throw_on_validation_messages("score");
+}
+
+}  // namespace trn::vk
