@@ -1,0 +1,94 @@
+// Benchmark inputs; see inputs.hpp.
+#include "inputs.hpp"
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <random>
+
+#include <opencv2/imgproc.hpp>
+
+#include "trn/error.hpp"
+#include "trn/io/image_io.hpp"
+
+namespace trn::bench {
+namespace {
+
+// Blurred noise with a few hard edges: NCC has texture to work on, like aerial imagery.
+cv::Mat synthetic_map(int w, int h) {
+    cv::Mat noise(h, w, CV_32FC1);
+    cv::RNG rng(20240601);
+    rng.fill(noise, cv::RNG::UNIFORM, 0.0, 255.0);
+    cv::GaussianBlur(noise, noise, cv::Size(0, 0), 2.0);
+    cv::normalize(noise, noise, 10, 245, cv::NORM_MINMAX);
+    cv::Mat u8;
+    noise.convertTo(u8, CV_8UC1);
+    for (int k = 0; k < 40; ++k) {
+        const cv::Point a(rng.uniform(0, w), rng.uniform(0, h)), b(rng.uniform(0, w), rng.uniform(0, h));
+        cv::line(u8, a, b, cv::Scalar(rng.uniform(0, 256)), 1 + rng.uniform(0, 4));
+    }
+    return u8;
+}
+
+MapInput load_map() {
+    if (const char* dir = std::getenv("TRN_SHARED_DATA"); dir && *dir) {
+        const std::filesystem::path path = std::filesystem::path(dir) / "orthophoto.png";
+        if (std::filesystem::exists(path)) {
+            const GrayImage img = load_gray(path.string());
+            cv::Mat m(img.height, img.width, CV_8UC1, const_cast<std::uint8_t*>(img.pixels.data()));
+            return {m.clone(), "orthophoto.png " + std::to_string(img.width) + "x" + std::to_string(img.height)};
+        }
+    }
+    return {synthetic_map(2048, 2048), "synthetic 2048x2048"};
+}
+
+void fill_random(std::uint8_t* p, std::size_t n, std::uint64_t seed) {
+    std::uint64_t s = seed | 1;
+    for (std::size_t i = 0; i < n; ++i) {
+        s ^= s << 13, s ^= s >> 7, s ^= s << 17;  // xorshift64: fast enough for a GiB
+        p[i] = static_cast<std::uint8_t>(s >> 32);
+    }
+}
+
+SobelFrames make_frames(const FrameSize& size, int count) {
+    const std::size_t px = std::size_t(size.width) * size.height;
+    SobelFrames f{size, count, std::vector<std::uint8_t>(px * count), std::vector<std::int16_t>(px * count),
+                  std::vector<std::int16_t>(px * count)};
+    fill_random(f.src.data(), f.src.size(), 0x5eed + size.width);
+    return f;
+}
+
+}  // namespace
+
+const MapInput& bench_map() {
+    static const MapInput map = load_map();
+    return map;
+}
+
+cv::Mat template_from_map(const FrameSize& size) {
+    const cv::Mat& m = bench_map().pixels;
+    if (size.width > m.cols || size.height > m.rows)
+        throw Error("bench: template " + size.text() + " is larger than the map " + bench_map().source);
+    const cv::Rect roi((m.cols - size.width) / 2, (m.rows - size.height) / 2, size.width, size.height);
+    return m(roi).clone();
+}
+
+std::vector<Pose> poses_around_centre(int count) {
+    const cv::Mat& m = bench_map().pixels;
+    const float cx = float(m.cols - 1) / 2, cy = float(m.rows - 1) / 2;
+    std::mt19937 rng(12345);
+    std::uniform_real_distribution<float> shift(-24.0f, 24.0f), yaw(-0.25f, 0.25f), scale(0.95f, 1.05f);
+    std::vector<Pose> poses(count);
+    for (Pose& p : poses) p = {cx + shift(rng), cy + shift(rng), yaw(rng), scale(rng)};
+    return poses;
+}
+
+SobelFrames frame_set(const FrameSize& size, int count) { return make_frames(size, count); }
+
+SobelFrames cold_frames(const FrameSize& size, std::size_t bytes) {
+    const double per_frame = kSobelBytesPerPixel * size.width * size.height;
+    const int count = std::max(2, static_cast<int>(std::ceil(double(bytes) / per_frame)));
+    return make_frames(size, count);
+}
+
+}  // namespace trn::bench

@@ -1,0 +1,48 @@
+#pragma once
+// Benchmark inputs, built once and shared: the map (the real orthophoto when $TRN_SHARED_DATA has
+// it, else a textured synthetic map), templates cut from it, particle poses around the true pose,
+// and Sobel frames (one hot frame per size, or a rotating working set larger than the cache).
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "sweep.hpp"
+#include "trn/scoring.hpp"
+
+namespace trn::bench {
+
+struct MapInput {
+    cv::Mat pixels;      // CV_8UC1, continuous
+    std::string source;  // "orthophoto.png" or "synthetic 2048x2048"
+};
+const MapInput& bench_map();
+
+// A template of the given size cut from the middle of the map (continuous CV_8UC1).
+cv::Mat template_from_map(const FrameSize& size);
+
+// `count` poses spread around the template's true pose (+-24 px, +-0.25 rad, scale 0.95..1.05),
+// the way a particle cloud sits around the vehicle; fixed seed, so every backend gets the same.
+std::vector<Pose> poses_around_centre(int count);
+
+// Frames for Sobel: `count` source images (random bytes) and room for their gradients, laid out
+// one after another so consecutive iterations touch different memory.
+struct SobelFrames {
+    FrameSize size;
+    int count = 0;
+    std::vector<std::uint8_t> src;
+    std::vector<std::int16_t> gx, gy;
+    const std::uint8_t* src_at(int i) const { return src.data() + std::size_t(i) * size.width * size.height; }
+    std::int16_t* gx_at(int i) { return gx.data() + std::size_t(i) * size.width * size.height; }
+    std::int16_t* gy_at(int i) { return gy.data() + std::size_t(i) * size.width * size.height; }
+};
+// `count` frames (count 1: hot, the frame stays in cache between iterations).
+SobelFrames frame_set(const FrameSize& size, int count);
+// As many frames as fit in `bytes` of traffic (1 B in + 4 B out per pixel), at least 2.
+SobelFrames cold_frames(const FrameSize& size, std::size_t bytes);
+
+// Compulsory Sobel traffic per pixel: one byte in, two int16 out.
+inline constexpr double kSobelBytesPerPixel = 5.0;
+
+}  // namespace trn::bench

@@ -1,0 +1,158 @@
+// NCC scoring on every backend, and the OpenCV ways a user would score particles instead.
+// Names: ncc/<template WxH>/<dense|sparse10>/N<particles>/<dev:NAME | peer:NAME>.
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <map>
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "devices.hpp"
+#include "inputs.hpp"
+#include "register.hpp"
+#include "timing.hpp"
+#include "trn/scoring_plan.hpp"
+
+namespace trn::bench {
+namespace {
+
+// The map goes to each device once, outside every timed loop.
+const MapHandle& map_on(const std::string& device) {
+    static std::map<std::string, MapHandle> maps;
+    MapHandle& h = maps[device];
+    if (!h) {
+        const cv::Mat& m = bench_map().pixels;
+        h = backend_for(device).upload_map({m.ptr<std::uint8_t>(), m.cols, m.rows, static_cast<std::ptrdiff_t>(m.step1())});
+    }
+    return h;
+}
+
+ScoreOptions options_for(bool sparse) {
+    ScoreOptions o;
+    if (sparse) o.sampling = Sampling::random(0.1, 7);
+    return o;
+}
+
+void ncc_on_device(benchmark::State& state, DeviceEntry dev, FrameSize templ_size, bool sparse, int count) {
+    Backend& backend = backend_for(dev.name);
+    const MapHandle& map = map_on(dev.name);
+    const cv::Mat templ = template_from_map(templ_size);
+    const ScoringPlan plan =
+        make_scoring_plan(GrayView{templ.ptr<std::uint8_t>(), templ.cols, templ.rows, templ.cols}, options_for(sparse));
+    const std::vector<Pose> poses = poses_around_centre(count);
+    std::vector<ParticleScore> scores(poses.size());
+    PhaseTimes t;
+    backend.score(map, plan, poses, scores, &t);  // first call: lazy buffers sized for this batch
+    const bool device_clock = has_device_clock(dev.family);
+    IterationLog log(state);
+    for (auto _ : state) {
+        const auto t0 = Clock::now();
+        backend.score(map, plan, poses, scores, &t);
+        log.add(seconds_since(t0), t, device_clock);
+    }
+    benchmark::DoNotOptimize(scores.data());
+    log.finish(0, count, "particles/s", 1, double(count) * plan.sample_count());
+    int valid = 0;
+    for (const ParticleScore& s : scores) valid += s.valid();
+    state.SetLabel(backend.info().device + ", " + std::to_string(plan.sample_count()) + " samples, " + std::to_string(valid) +
+                   "/" + std::to_string(count) + " valid, map " + bench_map().source);
+}
+
+// Inverse affine (template pixel -> source pixel) of a pose, for cv::warpAffine(WARP_INVERSE_MAP),
+// relative to a source whose top-left is at (ox, oy) in the map.
+cv::Matx23d pose_matrix(const Pose& p, const cv::Mat& templ, double ox, double oy) {
+    const double c = std::cos(p.yaw) * p.scale, s = std::sin(p.yaw) * p.scale;
+    const double cx = (templ.cols - 1) / 2.0, cy = (templ.rows - 1) / 2.0;
+    return {c, -s, p.x - ox - c * cx + s * cy, s, c, p.y - oy - s * cx - c * cy};
+}
+
+enum class Peer { ParticleMatch, WarpStats, WarpOnly };
+
+const char* peer_name(Peer p) {
+    return p == Peer::ParticleMatch ? "peer:particle_match" : p == Peer::WarpStats ? "peer:cv_warpAffine_meanstd_dot" : "peer:cv_warpAffine_only";
+}
+
+// particle_match: per particle, crop the map around the pose (an ROI, no copy: the cheapest
+// reading of "crop"), warp the crop to the template, matchTemplate(TM_CCOEFF_NORMED) -> 1x1.
+float particle_match_score(const cv::Mat& map, const cv::Mat& templ, const Pose& p, cv::Mat& patch, cv::Mat& result) {
+    const double r = 0.5 * p.scale * std::hypot(templ.cols, templ.rows) + 2;
+    const cv::Rect want(int(std::floor(p.x - r)), int(std::floor(p.y - r)), int(std::ceil(2 * r)) + 1, int(std::ceil(2 * r)) + 1);
+    const cv::Rect roi = want & cv::Rect(0, 0, map.cols, map.rows);
+    const cv::Mat crop = map(roi);
+    cv::warpAffine(crop, patch, pose_matrix(p, templ, roi.x, roi.y), templ.size(), cv::INTER_LINEAR | cv::WARP_INVERSE_MAP);
+    cv::matchTemplate(patch, templ, result, cv::TM_CCOEFF_NORMED);
+    return result.at<float>(0, 0);
+}
+
+// warpAffine straight to the patch, then NCC from mean/std and one dot product.
+float warp_stats_score(const cv::Mat& map, const cv::Mat& templ, double t_mean, double t_std, const Pose& p, cv::Mat& patch) {
+    cv::warpAffine(map, patch, pose_matrix(p, templ, 0, 0), templ.size(), cv::INTER_LINEAR | cv::WARP_INVERSE_MAP);
+    cv::Scalar mean, stddev;
+    cv::meanStdDev(patch, mean, stddev);
+    const double n = double(templ.total());
+    const double cov = patch.dot(templ) / n - mean[0] * t_mean;
+    return float(cov / (stddev[0] * t_std + 1e-12));
+}
+
+void ncc_peer(benchmark::State& state, Peer peer, FrameSize templ_size, int count) {
+    const cv::Mat& map = bench_map().pixels;
+    const cv::Mat templ = template_from_map(templ_size);
+    cv::Scalar t_mean, t_std;
+    cv::meanStdDev(templ, t_mean, t_std);
+    const std::vector<Pose> poses = poses_around_centre(count);
+    std::vector<float> scores(poses.size());
+    cv::Mat patch(templ.size(), CV_8UC1), result(1, 1, CV_32FC1);
+    auto run_all = [&] {
+        for (std::size_t i = 0; i < poses.size(); ++i) {
+            switch (peer) {
+                case Peer::ParticleMatch: scores[i] = particle_match_score(map, templ, poses[i], patch, result); break;
+                case Peer::WarpStats: scores[i] = warp_stats_score(map, templ, t_mean[0], t_std[0], poses[i], patch); break;
+                case Peer::WarpOnly:
+                    cv::warpAffine(map, patch, pose_matrix(poses[i], templ, 0, 0), templ.size(), cv::INTER_LINEAR | cv::WARP_INVERSE_MAP);
+                    scores[i] = patch.at<std::uint8_t>(0, 0);
+                    break;
+            }
+        }
+    };
+    run_all();
+    IterationLog log(state);
+    for (auto _ : state) {
+        const auto t0 = Clock::now();
+        run_all();
+        log.add(seconds_since(t0));
+    }
+    benchmark::DoNotOptimize(scores.data());
+    log.finish(0, count, "particles/s", 1, double(count) * templ.total());
+    state.SetLabel("OpenCV " CV_VERSION ", " + std::to_string(cv::getNumThreads()) + " threads, one call per particle, score[0]=" +
+                   std::to_string(scores[0]));
+}
+
+}  // namespace
+
+void register_ncc_benchmarks(const Sweep& sweep) {
+    for (const FrameSize& ts : sweep.ncc_templates) {
+        for (bool sparse : {false, true}) {
+            const std::string prefix = "ncc/" + ts.text() + "/" + (sparse ? "sparse10" : "dense") + "/N";
+            for (const DeviceEntry& dev : bench_devices()) {
+                for (int n : sweep.ncc_counts) {
+                    if (dev.family == "cpu-ref") continue;  // its own, smaller case below
+                    benchmark::RegisterBenchmark((prefix + std::to_string(n) + "/dev:" + dev.name).c_str(), ncc_on_device, dev, ts,
+                                                 sparse, n)
+                        ->UseManualTime()->Unit(benchmark::kMillisecond);
+                }
+                if (dev.family == "cpu-ref")
+                    benchmark::RegisterBenchmark((prefix + std::to_string(sweep.ncc_reference_count) + "/dev:" + dev.name).c_str(),
+                                                 ncc_on_device, dev, ts, sparse, sweep.ncc_reference_count)
+                        ->UseManualTime()->Unit(benchmark::kMillisecond);
+            }
+            if (sparse) continue;  // the peers have no sparse mode
+            for (Peer peer : {Peer::ParticleMatch, Peer::WarpStats, Peer::WarpOnly})
+                benchmark::RegisterBenchmark((prefix + std::to_string(sweep.ncc_reference_count) + "/" + peer_name(peer)).c_str(), ncc_peer,
+                                             peer, ts, sweep.ncc_reference_count)
+                    ->UseManualTime()->Unit(benchmark::kMillisecond);
+        }
+    }
+}
+
+}  // namespace trn::bench

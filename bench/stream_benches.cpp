@@ -1,0 +1,67 @@
+// STREAM-like copy and triad (McCalpin's kernels, OpenMP over every core): the memory-bandwidth
+// limit that Sobel's compulsory traffic is measured against. Bytes counted as STREAM does
+// (copy 16 B, triad 24 B per element; write-allocate reads not counted).
+// Names: stream/<copy|triad>/cold (arrays together larger than the cold working set of Sobel).
+// No "hot" variant: on 2 cores, OpenMP fork/join dominates arrays small enough for L2.
+#include <benchmark/benchmark.h>
+#include <omp.h>
+
+#include <memory>
+
+#include "register.hpp"
+#include "timing.hpp"
+
+namespace trn::bench {
+namespace {
+
+struct Arrays {
+    std::size_t n;
+    std::unique_ptr<double[]> a, b, c;
+    explicit Arrays(std::size_t count) : n(count), a(new double[count]), b(new double[count]), c(new double[count]) {
+        // First touch on the threads that later use each part (page placement).
+#pragma omp parallel for schedule(static)
+        for (std::size_t i = 0; i < n; ++i) a[i] = 1.0, b[i] = 2.0, c[i] = 0.0;
+    }
+};
+
+enum class Kernel { Copy, Triad };
+
+void stream(benchmark::State& state, Kernel kernel, std::size_t bytes_total) {
+    Arrays arr(bytes_total / 3 / sizeof(double));
+    double* a = arr.a.get();
+    const double* b = arr.b.get();
+    const double* c = arr.c.get();
+    const long n = static_cast<long>(arr.n);
+    const double s = 3.0;
+    auto run = [&] {
+        if (kernel == Kernel::Copy) {
+#pragma omp parallel for schedule(static)
+            for (long i = 0; i < n; ++i) a[i] = b[i];
+        } else {
+#pragma omp parallel for schedule(static)
+            for (long i = 0; i < n; ++i) a[i] = b[i] + s * c[i];
+        }
+    };
+    run();
+    IterationLog log(state);
+    for (auto _ : state) {
+        const auto t0 = Clock::now();
+        run();
+        benchmark::ClobberMemory();
+        log.add(seconds_since(t0));
+    }
+    const double bytes = double(n) * sizeof(double) * (kernel == Kernel::Copy ? 2 : 3);
+    log.finish(bytes, double(n), "Melem/s", 1e6);
+    state.SetLabel(std::to_string(omp_get_max_threads()) + " threads, 3 arrays of " + std::to_string(n * sizeof(double) >> 20) + " MiB");
+}
+
+}  // namespace
+
+void register_stream_benchmarks(const Sweep& sweep) {
+    for (auto [kernel, name] : {std::pair{Kernel::Copy, "copy"}, std::pair{Kernel::Triad, "triad"}}) {
+        benchmark::RegisterBenchmark((std::string("stream/") + name + "/cold").c_str(), stream, kernel, sweep.cold_bytes)
+            ->UseManualTime()->Unit(benchmark::kMillisecond);
+    }
+}
+
+}  // namespace trn::bench

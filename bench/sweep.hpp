@@ -1,0 +1,34 @@
+#pragma once
+// Which cases a run registers: a quick default subset (the under-two-minutes report) or the full
+// sweep from issue 6. Chosen by --trn_full on the command line (taken out before Google Benchmark
+// sees the arguments).
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace trn::bench {
+
+struct FrameSize {
+    int width, height;
+    std::string text() const { return std::to_string(width) + "x" + std::to_string(height); }
+};
+
+struct Sweep {
+    bool full = false;
+    std::vector<FrameSize> sobel_sizes;        // every device, hot
+    std::vector<FrameSize> sobel_cold_sizes;   // every device, cold
+    FrameSize sobel_reference_size{640, 480};  // the only size cpu-ref runs (slow by design)
+    bool sobel_batch16 = false;                // 16 frames per iteration on opencl/vulkan devices
+    std::vector<int> ncc_counts;               // particles per call
+    std::vector<FrameSize> ncc_templates;
+    int ncc_reference_count = 100;             // cpu-ref and the per-particle peers run this many
+    std::size_t cold_bytes = 0;                // rotating working set for "cold" cases
+};
+
+Sweep make_sweep(bool full);
+
+// The size of the rotating working set: $TRN_BENCH_COLD_MB if set, else twice the last-level
+// cache the OS reports (at least 256 MiB, at most 2 GiB).
+std::size_t cold_working_set_bytes();
+
+}  // namespace trn::bench
