@@ -39,7 +39,7 @@ double Ina219Config::conversion_time_s() const {
 }
 
 Ina219Config Ina219Config::from_options(const ParseOptions& options, const std::string& parser) {
-    OptionReader o(options, parser, {"shunt_ohm", "current_lsb", "cal", "pga_mv", "adc", "use"});
+    OptionReader o(options, parser, {"shunt_ohm", "current_lsb", "cal", "pga_mv", "adc", "use", "time_ref"});
     Ina219Config c;
     c.shunt_ohm = o.number("shunt_ohm", c.shunt_ohm);
     c.current_lsb_a = o.number("current_lsb", 0);

@@ -253,7 +253,12 @@ PowerTrace parse_ina219_raw(std::string_view input, const std::string& name, con
                 merged[key] = std::string(tok.substr(eq + 1));
         }
     }
-    for (const auto& [k, v] : options) merged[k] = v;
+    std::string time_ref = "adc";
+    for (const auto& [k, v] : options) {
+        if (k == "time_ref") time_ref = v;
+        else merged[k] = v;
+    }
+    if (time_ref != "adc" && time_ref != "read") throw Error(parser + ": option time_ref must be adc or read");
     if (auto it = merged.find("use"); it != merged.end()) use = it->second;
     if (use != "vi" && use != "power") throw Error(parser + ": option use must be vi or power");
     const Ina219Config cfg = Ina219Config::from_options(merged, parser);
@@ -271,6 +276,7 @@ PowerTrace parse_ina219_raw(std::string_view input, const std::string& name, con
     if (ct < 0 || cs < 0 || cb < 0) text::fail(name, lines[hi].number, "header must name time_s, shunt and bus (optional current, power)");
     if (use == "power" && cp < 0) throw Error(parser + ": use=power but the log has no power column");
 
+    const double time_shift = time_ref == "adc" ? 1.5 * cfg.conversion_time_s() : 0.0;
     TraceBuilder b(name, "ina219-raw");
     b.trace().quantity = use == "power" ? "power register" : (cc >= 0 ? "bus x current register" : "bus x shunt/R");
     std::size_t overflow = 0, first_overflow = 0;
@@ -312,8 +318,10 @@ PowerTrace parse_ina219_raw(std::string_view input, const std::string& name, con
         }
         if (d.overflow && overflow++ == 0) first_overflow = l.number;
         max_bus = std::max(max_bus, d.bus_v);
-        b.add(l.number, *t, d.power_w);
+        b.add(l.number, *t - time_shift, d.power_w);
     }
+    if (time_shift > 0)
+        b.note("sample times moved 1.5 conversion times before the read (centre of the shunt ADC window, read assumed right after the conversion); time_ref=read keeps read times");
     if (overflow) b.note(std::to_string(overflow) + " sample(s) flagged overflow (OVF or shunt beyond +-" + std::to_string(cfg.pga_mv) +
                          " mV; first at line " + std::to_string(first_overflow) + "): their power is a lower bound");
     b.trace().resolution_w = use == "power" ? 20 * cfg.current_lsb_a : max_bus * cfg.current_lsb_a;

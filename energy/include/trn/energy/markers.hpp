@@ -1,0 +1,54 @@
+#pragma once
+// The frame marker file written by `trnkit frames`: one row per sync burst, idle gap and frame,
+// with start/end on CLOCK_MONOTONIC and CLOCK_REALTIME (ns) and the write/exec/read phase times.
+//
+//   # trnkit-frames v1 key=value ...
+//   kind,id,mono_start_ns,mono_end_ns,real_start_ns,real_end_ns,write_ms,exec_ms,read_ms
+//   sync,0,...   idle,0,...   frame,0,...
+#include <cstdint>
+#include <map>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "trn/energy/trace.hpp"
+
+namespace trn::energy {
+
+struct FrameMarker {
+    std::string kind;  // "sync", "idle" or "frame"
+    int id = 0;
+    std::int64_t mono_start_ns = 0, mono_end_ns = 0, real_start_ns = 0, real_end_ns = 0;
+    double write_ms = 0, exec_ms = 0, read_ms = 0;
+};
+
+struct MarkerFile {
+    std::map<std::string, std::string> meta;  // from the first line: backend, kernel, size, ...
+    std::vector<FrameMarker> rows;
+};
+
+MarkerFile parse_markers(std::string_view text, const std::string& name);
+MarkerFile read_markers(const std::string& path);
+std::string format_markers(const MarkerFile& markers);
+
+// An interval on the power trace's clock.
+struct TimedInterval {
+    std::string kind;
+    int id = 0;
+    double start = 0, end = 0;
+};
+
+// Which marker clock to read and how it maps onto the trace: t_trace = t + offset + drift*(t - ref).
+struct ClockMapping {
+    bool realtime = true;  // CLOCK_REALTIME (UNIX time); false: CLOCK_MONOTONIC
+    double offset_s = 0;
+    double drift = 0;      // seconds per second
+    double ref_s = 0;      // marker time at which drift is zero
+    double map(double t) const { return t + offset_s + drift * (t - ref_s); }
+};
+std::vector<TimedInterval> marker_intervals(const MarkerFile& markers, const ClockMapping& mapping);
+
+// PMT-style start/end marker pairs -> frame intervals (ids in order); throws on unpaired ones.
+std::vector<TimedInterval> intervals_from_trace_markers(const PowerTrace& trace);
+
+}  // namespace trn::energy
