@@ -1,13 +1,177 @@
-// Placeholder until the subsystem lands: the subcommand exists and says so plainly.
+// `trnkit simulate`: flies a scenario over a map (an orthophoto file or a procedural one) and writes
+// an AIR flight folder: frames, metadata.csv, flight.json and the localization map. `--read DIR`
+// reads a flight folder back and checks every row and image.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <optional>
+
 #include "commands.hpp"
 #include "trn/error.hpp"
+#include "trn/sim/air_format.hpp"
+#include "trn/sim/flight.hpp"
+#include "trn/sim/map_ageing.hpp"
+#include "trn/sim/procedural_map.hpp"
 
 namespace trn::cli {
+namespace {
+
+struct SimulateArgs {
+    std::string scenario, map, procedural, out, read;
+    double mpp = 0, lat = NAN, lon = NAN, seconds = 0, fov = 60, noise = 0.02, wobble_deg = 0, size_m = 0;
+    std::uint64_t seed = 1;
+    int map_year = 0, base_year = 2008;
+    std::size_t frames = 0;
+};
+
+void progress(std::size_t done, std::size_t total) {
+    const int width = 40, filled = total ? static_cast<int>(width * done / total) : width;
+    std::fprintf(stderr, "\r[%s%s] %3d%% %zu/%zu frames", std::string(filled, '#').c_str(),
+                 std::string(width - filled, ' ').c_str(), total ? static_cast<int>(100 * done / total) : 100, done, total);
+    if (done == total) std::fputc('\n', stderr);
+}
+
+// Builds the localization map (what a navigator would have on board) and the map the frames are
+// rendered from (the world at flight time, aged when --map-year differs from the base year).
+void make_maps(const SimulateArgs& a, const sim::Scenario& sc, sim::Map& base, sim::Map& world, int& world_year) {
+    world_year = a.map_year ? a.map_year : a.base_year;
+    if (!a.map.empty()) {
+        if (!(a.mpp > 0)) throw Error("--map needs --mpp (ground resolution in metres per pixel)");
+        std::optional<sim::GeoOrigin> origin;
+        if (!std::isnan(a.lat) || !std::isnan(a.lon)) {
+            if (std::isnan(a.lat) || std::isnan(a.lon)) throw Error("--lat and --lon go together");
+            origin = sim::GeoOrigin{a.lat, a.lon};
+        }
+        base = sim::load_map(a.map, a.mpp, origin);
+        if (world_year != a.base_year) {
+            sim::MapAgeingOptions ageing;
+            ageing.years = std::abs(world_year - a.base_year);
+            ageing.seed = a.seed;
+            world = sim::age_map(base, ageing);
+        } else {
+            world = base;
+        }
+        return;
+    }
+    sim::ProceduralMapOptions o;
+    o.style = a.procedural.empty() ? sc.terrain : sim::parse_terrain_style(a.procedural);
+    o.seed = a.seed;
+    o.year = a.base_year;
+    o.metres_per_pixel = a.mpp > 0 ? a.mpp : 1.0;
+    // Big enough for the scenario's loop plus the camera footprint, unless given.
+    const double footprint = sc.altitude_m / sim::Camera{640, 480, a.fov}.focal_px() * 400 * 2;
+    o.width_m = o.height_m = a.size_m > 0 ? a.size_m : std::ceil((sc.nominal_size_m * 1.1 + footprint + 100) / 100) * 100;
+    if (!std::isnan(a.lat) && !std::isnan(a.lon)) o.origin = {a.lat, a.lon};
+    std::cerr << "generating a " << sim::to_string(o.style) << " map of " << o.width_m << " x " << o.height_m << " m at "
+              << o.metres_per_pixel << " m/px (seed " << o.seed << ")\n";
+    base = sim::generate_procedural_map(o);
+    if (world_year != o.year) {
+        o.year = world_year;
+        world = sim::generate_procedural_map(o);
+    } else {
+        world = base;
+    }
+}
+
+void simulate(const SimulateArgs& a) {
+    if (a.out.empty()) throw Error("--out DIR is required");
+    const sim::Scenario& preset = sim::find_scenario(a.scenario);
+    sim::FlightConfig cfg;
+    cfg.scenario = preset;
+    cfg.camera.hfov_deg = a.fov;
+    cfg.render.noise_sigma = a.noise;
+    cfg.camera_roll_pitch_sd_deg = a.wobble_deg;
+    cfg.seed = a.seed;
+    if (a.frames && a.seconds > 0) throw Error("give --frames or --seconds, not both");
+    cfg.frames = a.frames ? a.frames : a.seconds > 0 ? static_cast<std::size_t>(std::llround(a.seconds * preset.fps)) : 0;
+
+    sim::Map base, world;
+    int world_year = 0;
+    make_maps(a, preset, base, world, world_year);
+    sim::FlightSimulator flight(world, cfg);
+
+    sim::AirWriter writer(a.out);
+    save_gray(a.out + "/map.png", base.image.view());
+    sim::FlightInfo info;
+    info.scenario = preset.name;
+    info.map_file = "map.png";
+    info.metres_per_pixel = base.metres_per_pixel;
+    info.origin = base.origin;
+    info.camera = cfg.camera;
+    info.fps = preset.fps;
+    info.map_year = a.base_year;
+    info.rendered_year = world_year;
+    info.seed = a.seed;
+    sim::write_flight_info(a.out + "/flight.json", info);
+
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::size_t total = flight.frame_count();
+    sim::FlightFrame frame;
+    char name[32];
+    while (flight.next(frame)) {
+        std::snprintf(name, sizeof name, "frame_%06zu.png", frame.index);
+        writer.write(sim::make_air_record(frame, name), frame.image.view());
+        if (frame.index % 10 == 0 || frame.index + 1 == total) progress(frame.index + 1, total);
+    }
+    writer.close();
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::cout << preset.name << ": " << total << " frames (" << total / preset.fps << " s of flight) in " << s << " s -> "
+              << a.out << "\n";
+}
+
+// Reads a flight folder back: every row parsed, every image present with the camera's size.
+void read_back(const std::string& folder) {
+    sim::FlightInfo info;
+    const bool has_info = std::filesystem::exists(folder + "/flight.json");
+    if (has_info) info = sim::read_flight_info(folder + "/flight.json");
+    sim::AirReader reader(folder);
+    sim::AirRecord r;
+    std::size_t rows = 0;
+    double path_m = 0, drift_m = 0, last_x = 0, last_y = 0;
+    while (reader.next(r)) {
+        const GrayImage img = reader.load_image(r);
+        if (has_info && (img.width != info.camera.width || img.height != info.camera.height))
+            throw Error(reader.image_path(r) + ": " + std::to_string(img.width) + "x" + std::to_string(img.height) +
+                        " differs from the camera in flight.json");
+        if (rows) path_m += std::hypot(r.pose_m.x - last_x, r.pose_m.y - last_y);
+        last_x = r.pose_m.x, last_y = r.pose_m.y;
+        drift_m = std::hypot(r.svo_m.x - r.pose_m.x, r.svo_m.y - r.pose_m.y);
+        ++rows;
+    }
+    std::cout << folder << ": " << rows << " frames";
+    if (has_info) std::cout << ", scenario " << info.scenario << ", map " << info.map_file << " at " << info.metres_per_pixel << " m/px";
+    std::cout << ", path " << path_m << " m, final odometry error " << drift_m << " m\n";
+}
+
+}  // namespace
 
 void add_simulate_command(CLI::App& app) {
-    auto* cmd = app.add_subcommand("simulate", "Simulate a UAV flight over a map and write an AIR dataset (not built yet)");
-    cmd->allow_extras();
-    cmd->callback([] { throw Error("'simulate' is not part of this build yet"); });
+    auto a = std::make_shared<SimulateArgs>();
+    auto* cmd = app.add_subcommand("simulate", "Simulate a UAV flight over a map and write an AIR dataset (or --read one back)");
+    cmd->add_option("--scenario", a->scenario, "Preset: FL-200 FL-300 FR-200 FR-300 FC-200 FC-300 UL-200 ... UC-300");
+    cmd->add_option("--map", a->map, "Orthophoto file to fly over (any image OpenCV reads)");
+    cmd->add_option("--mpp", a->mpp, "Map ground resolution, metres per pixel (required with --map; default 1 for procedural)");
+    cmd->add_option("--lat", a->lat, "Latitude of the map's top-left pixel");
+    cmd->add_option("--lon", a->lon, "Longitude of the map's top-left pixel");
+    cmd->add_option("--procedural", a->procedural, "Procedural map style: forest or urban (default: the scenario's terrain)");
+    cmd->add_option("--size-m", a->size_m, "Procedural map edge, metres (default: fits the scenario)");
+    cmd->add_option("--seed", a->seed, "Seed for the map, noise and sensors")->capture_default_str();
+    cmd->add_option("--map-year", a->map_year, "Render the frames from the map of this year (localize on the base year)");
+    cmd->add_option("--base-year", a->base_year, "Year of the localization map")->capture_default_str();
+    auto* frames = cmd->add_option("--frames", a->frames, "Number of frames (default: the scenario's 320 s)");
+    cmd->add_option("--seconds", a->seconds, "Seconds of flight instead of --frames")->excludes(frames);
+    cmd->add_option("--fov", a->fov, "Horizontal field of view, degrees")->capture_default_str();
+    cmd->add_option("--noise", a->noise, "Gaussian image noise, share of full scale")->capture_default_str();
+    cmd->add_option("--wobble-deg", a->wobble_deg, "Camera roll/pitch wobble (0: gimbal-stabilised)")->capture_default_str();
+    cmd->add_option("-o,--out", a->out, "Output flight folder");
+    cmd->add_option("--read", a->read, "Read an AIR flight folder back and check it, instead of simulating");
+    cmd->callback([a] {
+        if (!a->read.empty()) return read_back(a->read);
+        if (a->scenario.empty()) throw Error("--scenario is required (or --read DIR)");
+        simulate(*a);
+    });
 }
 
 }  // namespace trn::cli

@@ -1,0 +1,115 @@
+#pragma once
+// The AIR dataset layout: one folder per flight with the camera images and metadata.csv, one row
+// per image, columns (units as the dissertation's Table 2.3 uses them):
+//   Filename                      image file, relative to the folder (may be quoted)
+//   Latitude, Longitude           degrees (WGS84)
+//   RelativeAltitude              metres above the take-off ground
+//   ImuX, ImuY, ImuZ, ImuW        attitude quaternion as the IMU/magnetometer measures it (ENU, FLU body)
+//   PoseX, PoseY, PoseZ           true position, metres east / north / up from the start point
+//   OrientationX, Y, Z, W         true attitude quaternion (ENU, FLU body)
+//   MapX, MapY                    true position in map pixels (x east, y south)
+//   SvoX, SvoY, SvoZ              visual odometry position, metres, same frame as Pose
+// The reader takes columns in any order, ignores extra ones, streams rows (a real flight has
+// 16,000) and reports a malformed row by file and line number. flight.json next to it (written by
+// `trnkit simulate`) names the map, its resolution and the camera.
+#include <cstdint>
+#include <fstream>
+#include <iosfwd>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "trn/sim/camera.hpp"
+#include "trn/sim/flight.hpp"
+#include "trn/sim/map.hpp"
+
+namespace trn::sim {
+
+struct Quaternion {
+    double x = 0, y = 0, z = 0, w = 1;
+};
+
+// Attitude quaternion (ENU world, x-forward/y-left/z-up body) from compass heading, roll, pitch.
+Quaternion attitude_quaternion(double heading_rad, double roll_rad = 0, double pitch_rad = 0);
+// Compass heading (0 north, pi/2 east) of such a quaternion.
+double heading_from_quaternion(const Quaternion& q);
+
+struct AirRecord {
+    std::string filename;
+    double latitude_deg = 0, longitude_deg = 0;
+    double relative_altitude_m = 0;
+    Quaternion imu;
+    Vec3 pose_m;
+    Quaternion orientation;
+    double map_x = 0, map_y = 0;
+    Vec3 svo_m;
+};
+
+AirRecord make_air_record(const FlightFrame& frame, const std::string& filename);
+
+// The column names in the order the writer uses.
+const std::vector<std::string>& air_columns();
+
+// Everything about a flight that is not per frame: written as flight.json.
+struct FlightInfo {
+    std::string scenario;
+    std::string map_file;          // localization map, relative to the flight folder ("" if none)
+    double metres_per_pixel = 1;
+    std::optional<GeoOrigin> origin;
+    Camera camera;
+    double fps = 50;
+    int map_year = 0;              // year of the localization map (0: unknown)
+    int rendered_year = 0;         // year of the map the frames were rendered from
+    std::uint64_t seed = 0;
+};
+void write_flight_info(const std::string& path, const FlightInfo& info);
+FlightInfo read_flight_info(const std::string& path);
+
+class AirWriter {
+public:
+    // Creates the folder (and parents) and metadata.csv with its header.
+    explicit AirWriter(const std::string& folder);
+    // Writes the image (when not empty) under record.filename and appends the row.
+    void write(const AirRecord& record, GrayView image = {});
+    void close();  // flushes; throws when the disk write failed
+    const std::string& folder() const { return folder_; }
+
+private:
+    std::string folder_;
+    std::ofstream csv_;
+};
+
+// Parses metadata.csv rows from any stream.
+class AirMetadataParser {
+public:
+    AirMetadataParser(std::istream& in, std::string source_name);
+    // Next row; false at the end. Throws trn::Error "source:line: reason" on a malformed row.
+    bool next(AirRecord& record);
+    int line() const { return line_; }  // line number of the last row read (1 = header)
+
+private:
+    std::istream& in_;
+    std::string source_;
+    int line_ = 0;
+    std::vector<int> column_of_;  // for each AIR column, its index in the file
+    std::size_t field_count_ = 0;
+};
+
+// Streams a flight folder.
+class AirReader {
+public:
+    explicit AirReader(const std::string& folder);
+    bool next(AirRecord& record) { return parser_->next(record); }
+    int line() const { return parser_->line(); }
+    std::string image_path(const AirRecord& record) const;
+    GrayImage load_image(const AirRecord& record) const;
+    const std::string& folder() const { return folder_; }
+
+private:
+    std::string folder_;
+    std::unique_ptr<std::ifstream> file_;
+    std::unique_ptr<AirMetadataParser> parser_;
+};
+
+}  // namespace trn::sim

@@ -1,0 +1,74 @@
+#pragma once
+// A simulated flight as a stream of frames with ground truth and sensor readings, generated in
+// memory on demand (write it out with air_format.hpp, or feed it straight to a filter).
+#include <cstddef>
+#include <cstdint>
+
+#include "trn/scoring.hpp"
+#include "trn/sim/camera.hpp"
+#include "trn/sim/map.hpp"
+#include "trn/sim/render.hpp"
+#include "trn/sim/scenario.hpp"
+#include "trn/sim/sensors.hpp"
+
+namespace trn::sim {
+
+struct GroundTruth {
+    double map_x = 0, map_y = 0;  // map pixel under the aircraft
+    double yaw_rad = 0;           // compass heading of the frame top (scoring.hpp convention)
+    double altitude_m = 0;        // above ground
+    double roll_rad = 0, pitch_rad = 0;  // camera attitude (0 with the gimbal)
+};
+
+struct FlightFrame {
+    std::size_t index = 0;
+    double time_s = 0;
+    GroundTruth truth;
+    Vec3 position_m;               // true east / north / up from the start point
+    LatLon geo;                    // true latitude / longitude
+    Vec3 odometry_m;               // visual odometry estimate, same frame as position_m
+    double magnetometer_heading_rad = 0;
+    double template_scale = 1;     // map pixels per camera pixel at this altitude
+    GrayImage image;               // empty when the flight is not rendering images
+
+    // The pose to score this frame at on the map: the truth as a scoring Pose.
+    Pose truth_pose() const;
+};
+
+struct FlightConfig {
+    Scenario scenario;
+    Camera camera;
+    RenderOptions render;
+    OdometryConfig odometry;
+    MagnetometerConfig magnetometer;
+    double camera_roll_pitch_sd_deg = 0;  // 0: gimbal-stabilised; else random slow wobble
+    std::size_t frames = 0;               // 0: the scenario's full duration
+    bool render_images = true;
+    std::uint64_t seed = 1;               // seeds noise, odometry, magnetometer and wobble
+};
+
+class FlightSimulator {
+public:
+    // Renders from `map` (keep it alive while simulating). Throws trn::Error when the map is too
+    // small for the camera footprint at the scenario's altitude.
+    FlightSimulator(const Map& map, const FlightConfig& config);
+
+    std::size_t frame_count() const { return frame_count_; }
+    // Fills the next frame; false when the flight is over.
+    bool next(FlightFrame& frame);
+    const Trajectory& trajectory() const { return trajectory_; }
+    const FlightConfig& config() const { return config_; }
+
+private:
+    const Map& map_;
+    FlightConfig config_;
+    Trajectory trajectory_;
+    std::size_t frame_count_;
+    std::size_t next_index_ = 0;
+    OdometrySimulator odometry_;
+    Magnetometer magnetometer_;
+    TrajectoryState previous_;
+    double start_x_m_ = 0, start_y_m_ = 0;
+};
+
+}  // namespace trn::sim

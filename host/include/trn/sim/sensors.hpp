@@ -1,0 +1,62 @@
+#pragma once
+// Simulated navigation sensors. Each one is seeded, so a run is reproducible.
+#include <cstdint>
+
+namespace trn::sim {
+
+struct Vec3 {
+    double x = 0, y = 0, z = 0;
+};
+
+// Visual odometry (SVO-like) drift model. The estimate integrates the true displacement of each
+// step in a local east/north/up frame starting at 0, distorted by
+//   - a scale error: distances come out (1 + scale_error) times the truth,
+//   - a constant heading bias that rotates the estimated track,
+//   - a position random walk (white velocity noise), and
+//   - extra error in turns: each radian turned adds a random heading error (sd per sqrt(radian))
+//     and the random walk grows with the turn rate, as SVO loses accuracy in turns.
+struct OdometryConfig {
+    double scale_error = 0.03;
+    double heading_bias_deg = 1.0;
+    double random_walk_m_per_sqrt_s = 0.05;
+    double turn_heading_noise_deg_per_sqrt_rad = 2.0;
+    double turn_random_walk_gain_per_rad_s = 5.0;  // random walk x (1 + gain * |yaw rate|)
+    std::uint64_t seed = 1;
+};
+
+class OdometrySimulator {
+public:
+    explicit OdometrySimulator(const OdometryConfig& config);
+    // One step: true displacement (east, north, up metres) over dt seconds at this yaw rate.
+    // Returns the new estimate of the position relative to the start.
+    Vec3 step(const Vec3& true_delta, double dt_s, double yaw_rate_rad_s);
+    const Vec3& estimate() const { return estimate_; }
+    double heading_error_rad() const { return heading_error_; }  // bias + accumulated turn error
+
+private:
+    OdometryConfig config_;
+    std::uint64_t rng_;
+    Vec3 estimate_;
+    double heading_error_;
+};
+
+// Magnetometer heading: truth + Gaussian noise, clipped to +-bound (the +-2 degree sensor spec).
+struct MagnetometerConfig {
+    double sigma_deg = 1.0;
+    double bound_deg = 2.0;
+    std::uint64_t seed = 2;
+};
+
+class Magnetometer {
+public:
+    explicit Magnetometer(const MagnetometerConfig& config);
+    double read(double true_heading_rad);  // radians, wrapped to (-pi, pi]
+
+private:
+    MagnetometerConfig config_;
+    std::uint64_t rng_;
+};
+
+double wrap_angle(double rad);  // to (-pi, pi]
+
+}  // namespace trn::sim

@@ -1,0 +1,258 @@
+#include "trn/sim/air_format.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <istream>
+#include <nlohmann/json.hpp>
+
+#include "trn/error.hpp"
+
+namespace trn::sim {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// The 20 columns in writer order; numeric_field(i) is where column i goes.
+const std::vector<std::string> kColumns = {
+    "Filename", "Latitude", "Longitude", "RelativeAltitude", "ImuX", "ImuY", "ImuZ", "ImuW", "PoseX", "PoseY", "PoseZ",
+    "OrientationX", "OrientationY", "OrientationZ", "OrientationW", "MapX", "MapY", "SvoX", "SvoY", "SvoZ"};
+
+double* numeric_field(AirRecord& r, std::size_t i) {
+    double* fields[] = {nullptr, &r.latitude_deg, &r.longitude_deg, &r.relative_altitude_m, &r.imu.x, &r.imu.y,
+                        &r.imu.z, &r.imu.w, &r.pose_m.x, &r.pose_m.y, &r.pose_m.z, &r.orientation.x, &r.orientation.y,
+                        &r.orientation.z, &r.orientation.w, &r.map_x, &r.map_y, &r.svo_m.x, &r.svo_m.y, &r.svo_m.z};
+    return fields[i];
+}
+
+std::string trim(std::string_view s) {
+    const auto b = s.find_first_not_of(" \t\r");
+    if (b == std::string_view::npos) return {};
+    return std::string(s.substr(b, s.find_last_not_of(" \t\r") - b + 1));
+}
+
+// Splits one CSV line; fields may be double-quoted with "" for a quote inside. False when a quote
+// is left open or text follows a closing quote.
+bool split_csv(const std::string& line, std::vector<std::string>& out, std::string& why) {
+    out.clear();
+    std::size_t i = 0;
+    const std::size_t n = line.size();
+    while (true) {
+        while (i < n && (line[i] == ' ' || line[i] == '\t')) ++i;
+        std::string field;
+        if (i < n && line[i] == '"') {
+            ++i;
+            bool closed = false;
+            while (i < n) {
+                if (line[i] == '"') {
+                    if (i + 1 < n && line[i + 1] == '"') {
+                        field += '"', i += 2;
+                        continue;
+                    }
+                    closed = true, ++i;
+                    break;
+                }
+                field += line[i++];
+            }
+            if (!closed) return why = "unterminated quoted field", false;
+            while (i < n && (line[i] == ' ' || line[i] == '\t' || line[i] == '\r')) ++i;
+            if (i < n && line[i] != ',') return why = "text after a closing quote", false;
+            out.push_back(field);
+        } else {
+            const std::size_t e = line.find(',', i);
+            out.push_back(trim(std::string_view(line).substr(i, e == std::string::npos ? std::string::npos : e - i)));
+            i = e == std::string::npos ? n : e;
+        }
+        if (i >= n) break;
+        ++i;  // the comma
+    }
+    return true;
+}
+
+std::string quote_if_needed(const std::string& s) {
+    if (s.find_first_of(",\"\n\r") == std::string::npos && s == trim(s)) return s;
+    std::string q = "\"";
+    for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return q + "\"";
+}
+
+}  // namespace
+
+Quaternion attitude_quaternion(double heading, double roll, double pitch) {
+    // ENU yaw is counter-clockwise from east; body FLU: roll about x (right wing down positive),
+    // pitch about y (nose down positive in FLU), so nose up is -pitch about y.
+    const double yaw = kPi / 2 - heading;
+    const double cy = std::cos(yaw / 2), sy = std::sin(yaw / 2);
+    const double cp = std::cos(-pitch / 2), sp = std::sin(-pitch / 2);
+    const double cr = std::cos(roll / 2), sr = std::sin(roll / 2);
+    return {sr * cp * cy - cr * sp * sy, cr * sp * cy + sr * cp * sy, cr * cp * sy - sr * sp * cy, cr * cp * cy + sr * sp * sy};
+}
+
+double heading_from_quaternion(const Quaternion& q) {
+    const double yaw = std::atan2(2 * (q.w * q.z + q.x * q.y), 1 - 2 * (q.y * q.y + q.z * q.z));
+    return wrap_angle(kPi / 2 - yaw);
+}
+
+AirRecord make_air_record(const FlightFrame& f, const std::string& filename) {
+    AirRecord r;
+    r.filename = filename;
+    r.latitude_deg = f.geo.latitude_deg;
+    r.longitude_deg = f.geo.longitude_deg;
+    r.relative_altitude_m = f.truth.altitude_m;
+    r.imu = attitude_quaternion(f.magnetometer_heading_rad, f.truth.roll_rad, f.truth.pitch_rad);
+    r.pose_m = f.position_m;
+    r.orientation = attitude_quaternion(f.truth.yaw_rad, f.truth.roll_rad, f.truth.pitch_rad);
+    r.map_x = f.truth.map_x;
+    r.map_y = f.truth.map_y;
+    r.svo_m = f.odometry_m;
+    return r;
+}
+
+const std::vector<std::string>& air_columns() { return kColumns; }
+
+// ---- flight.json ----
+
+void write_flight_info(const std::string& path, const FlightInfo& info) {
+    nlohmann::json j;
+    j["scenario"] = info.scenario;
+    j["map_file"] = info.map_file;
+    j["metres_per_pixel"] = info.metres_per_pixel;
+    if (info.origin) j["origin"] = {{"latitude_deg", info.origin->latitude_deg}, {"longitude_deg", info.origin->longitude_deg}};
+    j["camera"] = {{"width", info.camera.width}, {"height", info.camera.height}, {"hfov_deg", info.camera.hfov_deg}};
+    j["fps"] = info.fps;
+    j["map_year"] = info.map_year;
+    j["rendered_year"] = info.rendered_year;
+    j["seed"] = info.seed;
+    std::ofstream out(path);
+    out << j.dump(2) << "\n";
+    if (!out) throw Error(path + ": cannot write");
+}
+
+FlightInfo read_flight_info(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw Error(path + ": cannot open");
+    FlightInfo info;
+    try {
+        const nlohmann::json j = nlohmann::json::parse(in);
+        info.scenario = j.value("scenario", "");
+        info.map_file = j.value("map_file", "");
+        info.metres_per_pixel = j.at("metres_per_pixel").get<double>();
+        if (j.contains("origin"))
+            info.origin = GeoOrigin{j["origin"].at("latitude_deg").get<double>(), j["origin"].at("longitude_deg").get<double>()};
+        const auto& c = j.at("camera");
+        info.camera = {c.at("width").get<int>(), c.at("height").get<int>(), c.at("hfov_deg").get<double>()};
+        info.fps = j.value("fps", 50.0);
+        info.map_year = j.value("map_year", 0);
+        info.rendered_year = j.value("rendered_year", 0);
+        info.seed = j.value("seed", std::uint64_t{0});
+    } catch (const nlohmann::json::exception& e) {
+        throw Error(path + ": not a valid flight description (" + e.what() + ")");
+    }
+    if (!(info.metres_per_pixel > 0)) throw Error(path + ": metres_per_pixel must be > 0");
+    info.camera.validate();
+    return info;
+}
+
+// ---- writer ----
+
+AirWriter::AirWriter(const std::string& folder) : folder_(folder) {
+    std::error_code ec;
+    std::filesystem::create_directories(folder, ec);
+    if (ec) throw Error(folder + ": cannot create folder (" + ec.message() + ")");
+    const std::string path = folder + "/metadata.csv";
+    csv_.open(path);
+    if (!csv_) throw Error(path + ": cannot write");
+    for (std::size_t i = 0; i < kColumns.size(); ++i) csv_ << (i ? "," : "") << kColumns[i];
+    csv_ << "\n";
+}
+
+void AirWriter::write(const AirRecord& r, GrayView image) {
+    if (r.filename.empty()) throw Error(folder_ + "/metadata.csv: a record has no file name");
+    if (!image.empty()) save_gray(folder_ + "/" + r.filename, image);
+    char buf[768];
+    std::snprintf(buf, sizeof buf,
+                  ",%.10f,%.10f,%.4f,%.9f,%.9f,%.9f,%.9f,%.4f,%.4f,%.4f,%.9f,%.9f,%.9f,%.9f,%.3f,%.3f,%.4f,%.4f,%.4f\n",
+                  r.latitude_deg, r.longitude_deg, r.relative_altitude_m, r.imu.x, r.imu.y, r.imu.z, r.imu.w, r.pose_m.x,
+                  r.pose_m.y, r.pose_m.z, r.orientation.x, r.orientation.y, r.orientation.z, r.orientation.w, r.map_x,
+                  r.map_y, r.svo_m.x, r.svo_m.y, r.svo_m.z);
+    csv_ << quote_if_needed(r.filename) << buf;
+    if (!csv_) throw Error(folder_ + "/metadata.csv: write failed");
+}
+
+void AirWriter::close() {
+    csv_.flush();
+    if (!csv_) throw Error(folder_ + "/metadata.csv: write failed");
+    csv_.close();
+}
+
+// ---- parser ----
+
+AirMetadataParser::AirMetadataParser(std::istream& in, std::string source) : in_(in), source_(std::move(source)) {
+    std::string header;
+    while (std::getline(in_, header)) {
+        ++line_;
+        if (!trim(header).empty()) break;
+    }
+    if (trim(header).empty()) throw Error(source_ + ": empty file, expected a header line with " + kColumns[0] + ",...");
+    if (header.rfind("\xEF\xBB\xBF", 0) == 0) header.erase(0, 3);  // UTF-8 byte order mark
+    std::vector<std::string> names;
+    std::string why;
+    if (!split_csv(header, names, why)) throw Error(source_ + ":" + std::to_string(line_) + ": header: " + why);
+    field_count_ = names.size();
+    column_of_.assign(kColumns.size(), -1);
+    for (std::size_t i = 0; i < names.size(); ++i)
+        for (std::size_t c = 0; c < kColumns.size(); ++c)
+            if (names[i] == kColumns[c]) {
+                if (column_of_[c] >= 0)
+                    throw Error(source_ + ":" + std::to_string(line_) + ": column " + kColumns[c] + " appears twice");
+                column_of_[c] = static_cast<int>(i);
+            }
+    for (std::size_t c = 0; c < kColumns.size(); ++c)
+        if (column_of_[c] < 0) throw Error(source_ + ":" + std::to_string(line_) + ": header lacks the column " + kColumns[c]);
+}
+
+bool AirMetadataParser::next(AirRecord& r) {
+    std::string text;
+    std::vector<std::string> fields;
+    while (std::getline(in_, text)) {
+        ++line_;
+        if (trim(text).empty()) continue;
+        const std::string at = source_ + ":" + std::to_string(line_) + ": ";
+        std::string why;
+        if (!split_csv(text, fields, why)) throw Error(at + why);
+        if (fields.size() != field_count_)
+            throw Error(at + "expected " + std::to_string(field_count_) + " fields like the header, got " +
+                        std::to_string(fields.size()));
+        r = AirRecord{};
+        r.filename = fields[column_of_[0]];
+        if (r.filename.empty()) throw Error(at + "Filename is empty");
+        for (std::size_t c = 1; c < kColumns.size(); ++c) {
+            const std::string& f = fields[column_of_[c]];
+            double v = 0;
+            const auto [ptr, ec] = std::from_chars(f.data(), f.data() + f.size(), v);
+            if (f.empty() || ec != std::errc() || ptr != f.data() + f.size())
+                throw Error(at + kColumns[c] + " '" + f.substr(0, 40) + "' is not a number");
+            if (!std::isfinite(v)) throw Error(at + kColumns[c] + " is not finite");
+            *numeric_field(r, c) = v;
+        }
+        return true;
+    }
+    if (in_.bad()) throw Error(source_ + ": read error");
+    return false;
+}
+
+// ---- reader ----
+
+AirReader::AirReader(const std::string& folder) : folder_(folder) {
+    const std::string path = folder + "/metadata.csv";
+    file_ = std::make_unique<std::ifstream>(path);
+    if (!*file_) throw Error(path + ": cannot open (is " + folder + " an AIR flight folder?)");
+    parser_ = std::make_unique<AirMetadataParser>(*file_, path);
+}
+
+std::string AirReader::image_path(const AirRecord& r) const { return folder_ + "/" + r.filename; }
+
+GrayImage AirReader::load_image(const AirRecord& r) const { return load_gray(image_path(r)); }
+
+}  // namespace trn::sim

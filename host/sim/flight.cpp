@@ -1,0 +1,106 @@
+#include "trn/sim/flight.hpp"
+
+#include <cmath>
+
+#include "random.hpp"
+#include "trn/error.hpp"
+
+namespace trn::sim {
+namespace {
+
+constexpr double kDeg = 3.14159265358979323846 / 180.0;
+
+// Half the diagonal of the camera footprint on the ground, metres (level camera).
+double footprint_radius_m(const Camera& c, double altitude_m) {
+    const double mpp_cam = altitude_m / c.focal_px();  // metres per camera pixel
+    return 0.5 * std::hypot(c.width, c.height) * mpp_cam;
+}
+
+Trajectory make_trajectory(const Map& map, const FlightConfig& cfg) {
+    cfg.camera.validate();
+    if (!(cfg.scenario.altitude_m > 0)) throw Error("flight: altitude must be > 0");
+    if (!(cfg.scenario.fps > 0)) throw Error("flight: fps must be > 0");
+    // Keep the whole footprint on the map, with room for roll/pitch wobble.
+    const double wobble = cfg.scenario.altitude_m * std::tan(3 * cfg.camera_roll_pitch_sd_deg * kDeg);
+    const double margin = footprint_radius_m(cfg.camera, cfg.scenario.altitude_m) + wobble + 5;
+    if (map.width_m() < 2 * margin + 20 || map.height_m() < 2 * margin + 20)
+        throw Error("flight: the map (" + std::to_string(map.width_m()) + " x " + std::to_string(map.height_m()) +
+                    " m) is too small for the camera footprint at " + std::to_string(cfg.scenario.altitude_m) +
+                    " m (needs more than " + std::to_string(2 * margin + 20) + " m each way)");
+    return Trajectory(cfg.scenario.shape, cfg.scenario.nominal_size_m, cfg.scenario.speed_mps, margin, margin,
+                      map.width_m() - margin, map.height_m() - margin);
+}
+
+}  // namespace
+
+Pose FlightFrame::truth_pose() const {
+    return {static_cast<float>(truth.map_x), static_cast<float>(truth.map_y), static_cast<float>(truth.yaw_rad),
+            static_cast<float>(template_scale)};
+}
+
+FlightSimulator::FlightSimulator(const Map& map, const FlightConfig& config)
+    : map_(map),
+      config_(config),
+      trajectory_(make_trajectory(map, config)),
+      frame_count_(config.frames ? config.frames : config.scenario.frame_count()),
+      odometry_([&] {
+          OdometryConfig o = config.odometry;
+          o.seed ^= detail::mix64(config.seed);
+          return o;
+      }()),
+      magnetometer_([&] {
+          MagnetometerConfig m = config.magnetometer;
+          m.seed ^= detail::mix64(config.seed + 1);
+          return m;
+      }()) {
+    previous_ = trajectory_.at(0);
+    start_x_m_ = previous_.x_m, start_y_m_ = previous_.y_m;
+}
+
+bool FlightSimulator::next(FlightFrame& f) {
+    if (next_index_ >= frame_count_) return false;
+    const std::size_t i = next_index_++;
+    const double dt = 1.0 / config_.scenario.fps, t = i * dt;
+    const TrajectoryState st = trajectory_.at(t);
+    const double mpp = map_.metres_per_pixel, alt = config_.scenario.altitude_m;
+
+    f.index = i;
+    f.time_s = t;
+    f.truth.map_x = st.x_m / mpp;
+    f.truth.map_y = st.y_m / mpp;
+    f.truth.yaw_rad = wrap_angle(st.heading_rad);
+    f.truth.altitude_m = alt;
+    // Unstabilised camera: slow, smooth wobble (two sines with seeded phases), not white noise.
+    if (config_.camera_roll_pitch_sd_deg > 0) {
+        const std::uint64_t h = detail::hash(config_.seed, 77);
+        const double sd = config_.camera_roll_pitch_sd_deg * kDeg * std::sqrt(2.0);
+        f.truth.roll_rad = sd * std::sin(2 * 3.14159265 * 0.31 * t + 6.28 * detail::unit(h, 0));
+        f.truth.pitch_rad = sd * std::sin(2 * 3.14159265 * 0.23 * t + 6.28 * detail::unit(h, 1));
+    } else {
+        f.truth.roll_rad = f.truth.pitch_rad = 0;
+    }
+    f.position_m = {st.x_m - start_x_m_, -(st.y_m - start_y_m_), alt};
+    f.geo = map_pixel_to_latlon(map_, f.truth.map_x, f.truth.map_y);
+    f.template_scale = template_scale(config_.camera, alt, mpp);
+    if (i == 0) {
+        f.odometry_m = odometry_.estimate();
+    } else {
+        const Vec3 delta{st.x_m - previous_.x_m, -(st.y_m - previous_.y_m), 0};
+        f.odometry_m = odometry_.step(delta, dt, st.yaw_rate_rad_s);
+    }
+    f.odometry_m.z += alt;  // odometry is initialised with the take-off height, then drifts
+    f.magnetometer_heading_rad = magnetometer_.read(f.truth.yaw_rad);
+    previous_ = st;
+
+    if (config_.render_images) {
+        RenderOptions r = config_.render;
+        r.noise_seed = detail::hash(config_.seed ^ r.noise_seed, 78, static_cast<std::int64_t>(i)) | 1;
+        const CameraPose pose{f.truth.map_x, f.truth.map_y, alt, f.truth.yaw_rad, f.truth.roll_rad, f.truth.pitch_rad};
+        f.image = render_frame(map_, config_.camera, pose, r);
+    } else {
+        f.image = {};
+    }
+    return true;
+}
+
+}  // namespace trn::sim

@@ -1,0 +1,28 @@
+#include "trn/sim/map.hpp"
+
+#include <cmath>
+
+#include "trn/error.hpp"
+
+namespace trn::sim {
+
+Map load_map(const std::string& path, double metres_per_pixel, std::optional<GeoOrigin> origin) {
+    if (!(metres_per_pixel > 0) || !std::isfinite(metres_per_pixel))
+        throw Error(path + ": map resolution " + std::to_string(metres_per_pixel) + " m/px must be > 0");
+    Map map;
+    map.image = load_gray(path);
+    map.metres_per_pixel = metres_per_pixel;
+    map.origin = origin;
+    return map;
+}
+
+LatLon map_pixel_to_latlon(const Map& map, double x, double y) {
+    constexpr double kEarthRadius = 6378137.0, kDeg = 180.0 / 3.14159265358979323846;
+    const GeoOrigin o = map.origin.value_or(GeoOrigin{});
+    const double east = x * map.metres_per_pixel, south = y * map.metres_per_pixel;
+    const double lat = o.latitude_deg - south / kEarthRadius * kDeg;
+    const double lon = o.longitude_deg + east / (kEarthRadius * std::cos(o.latitude_deg / kDeg)) * kDeg;
+    return {lat, lon};
+}
+
+}  // namespace trn::sim

@@ -1,0 +1,407 @@
+// Procedural orthophoto: every pixel is shade(x, y) of a scene described by a few hashed rules
+// (see procedural_map.hpp). Positions are in metres, so the resolution only changes sampling.
+#include "trn/sim/procedural_map.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "random.hpp"
+#include "trn/error.hpp"
+
+namespace trn::sim {
+namespace {
+
+using detail::hash;
+using detail::unit;
+constexpr double kPi = 3.14159265358979323846;
+
+// Smooth value noise on a hashed lattice with cell `cell_m` metres; values in [0, 1).
+class ValueNoise {
+public:
+    ValueNoise(std::uint64_t seed, double cell_m) : seed_(seed), inv_cell_(1.0 / cell_m) {}
+    double at(double x, double y) const {
+        const double gx = x * inv_cell_, gy = y * inv_cell_;
+        const double fx0 = std::floor(gx), fy0 = std::floor(gy);
+        const auto ix = static_cast<std::int64_t>(fx0), iy = static_cast<std::int64_t>(fy0);
+        double fx = gx - fx0, fy = gy - fy0;
+        fx = fx * fx * (3 - 2 * fx), fy = fy * fy * (3 - 2 * fy);
+        const double a = unit(hash(seed_, ix, iy)), b = unit(hash(seed_, ix + 1, iy));
+        const double c = unit(hash(seed_, ix, iy + 1)), d = unit(hash(seed_, ix + 1, iy + 1));
+        const double top = a + fx * (b - a), bot = c + fx * (d - c);
+        return top + fy * (bot - top);
+    }
+
+private:
+    std::uint64_t seed_;
+    double inv_cell_;
+};
+
+enum class Land { Forest, Field, Meadow, Houses, Industrial, Park };
+
+struct Rect {
+    double x0, y0, x1, y1;
+    bool contains(double x, double y) const { return x >= x0 && x < x1 && y >= y0 && y < y1; }
+};
+
+// True when the point lies in the shadow a box of `rect` casts along `dir` (unit, shadows fall
+// that way) up to `length` metres: some t in [0, length] puts (x, y) - t*dir inside the box.
+bool in_cast_shadow(const Rect& r, double x, double y, double dx, double dy, double length) {
+    double t0 = 0, t1 = length;
+    const double p[2] = {x, y}, d[2] = {dx, dy}, lo[2] = {r.x0, r.y0}, hi[2] = {r.x1, r.y1};
+    for (int k = 0; k < 2; ++k) {
+        if (std::abs(d[k]) < 1e-12) {
+            if (p[k] < lo[k] || p[k] >= hi[k]) return false;
+            continue;
+        }
+        // p - t d in [lo, hi]  <=>  t in [(p - hi)/d, (p - lo)/d] (swapped when d < 0)
+        double a = (p[k] - hi[k]) / d[k], b = (p[k] - lo[k]) / d[k];
+        if (a > b) std::swap(a, b);
+        t0 = std::max(t0, a), t1 = std::min(t1, b);
+        if (t0 > t1) return false;
+    }
+    return true;
+}
+
+class Scene {
+public:
+    explicit Scene(const ProceduralMapOptions& o)
+        : o_(o),
+          urban_(o.style == TerrainStyle::Urban),
+          seed_(detail::mix64(o.seed * 2 + (urban_ ? 1 : 0))),
+          warp_x_(hash(seed_, 1), 450), warp_y_(hash(seed_, 2), 450),
+          lakes_(hash(seed_, 3), urban_ ? 500 : 700), lakes_fine_(hash(seed_, 4), 120),
+          mottle_(hash(seed_, 5), 14), grain_(hash(seed_, 6), 3.5), stands_(hash(seed_, 7), 60),
+          river_wobble_(hash(seed_, 8), 300) {
+        make_lines(xs_, o.width_m, 11);
+        make_lines(ys_, o.height_m, 12);
+        // The year sets the season and the sun; it never moves roads, blocks or rivers.
+        const std::uint64_t y = hash(seed_, 20, o.year);
+        const double shadow_azimuth = kPi * (0.55 + 0.9 * unit(y, 0));  // shadows fall north-ish
+        sun_dx_ = std::sin(shadow_azimuth) * -1.0;
+        sun_dy_ = std::cos(shadow_azimuth);  // azimuth measured from south, clockwise
+        const double norm = std::hypot(sun_dx_, sun_dy_);
+        sun_dx_ /= norm, sun_dy_ /= norm;
+        sun_elevation_ = (30 + 30 * unit(y, 1)) * kPi / 180;
+        shadow_per_metre_ = 1.0 / std::tan(sun_elevation_);
+        gain_ = 0.92 + 0.16 * unit(y, 2);
+        offset_ = -8 + 16 * unit(y, 3);
+        vegetation_gain_ = 0.85 + 0.3 * unit(y, 4);
+        river_y_ = o.height_m * (0.25 + 0.5 * unit(hash(seed_, 9)));
+        river_phase_ = 2 * kPi * unit(hash(seed_, 10));
+    }
+
+    float shade(double x, double y) const {
+        double v = shade_land(x, y);
+        v = v * gain_ + offset_;
+        v += 6.0 * (grain_.at(x, y) - 0.5) + 3.0 * (unit(hash(seed_, 30, std::llround(x * 8), std::llround(y * 8))) - 0.5);
+        return static_cast<float>(std::clamp(v, 0.0, 255.0));
+    }
+
+private:
+    void make_lines(std::vector<double>& lines, double extent, int salt) const {
+        const double lo = urban_ ? 90 : 220, hi = urban_ ? 170 : 520;
+        double p = -lo - 100;
+        for (int i = 0; p < extent + hi + 100; ++i) {
+            lines.push_back(p);
+            p += lo + (hi - lo) * unit(hash(seed_, salt, i));
+        }
+    }
+    static int find(const std::vector<double>& lines, double p) {
+        const auto it = std::upper_bound(lines.begin(), lines.end(), p);
+        return std::clamp(static_cast<int>(it - lines.begin()) - 1, 0, static_cast<int>(lines.size()) - 2);
+    }
+
+    // Road width (metres) on segment `seg` of boundary line `line` (vertical when `vertical`); 0: none.
+    double road_width(bool vertical, int line, int seg) const {
+        const std::uint64_t h = hash(seed_, vertical ? 40 : 41, line, seg);
+        const bool main_road = unit(hash(seed_, vertical ? 42 : 43, line)) < (urban_ ? 0.25 : 0.3);
+        if (urban_) return main_road ? 14 : 8;
+        if (main_road) return 8;
+        return unit(h) < 0.3 ? 4.5 : 0.0;  // farm tracks on some field edges
+    }
+    bool hedge(bool vertical, int line, int seg) const { return !urban_ && unit(hash(seed_, vertical ? 44 : 45, line, seg)) < 0.35; }
+
+    Land land(int bi, int bj) const {
+        const double u = unit(hash(seed_, 50, bi, bj));
+        if (urban_) {
+            if (u < 0.58) return Land::Houses;
+            if (u < 0.70) return Land::Industrial;
+            if (u < 0.80) return Land::Park;
+            if (u < 0.90) return Land::Field;
+            return Land::Forest;
+        }
+        if (u < 0.45) return Land::Forest;
+        if (u < 0.80) return Land::Field;
+        if (u < 0.92) return Land::Meadow;
+        return Land::Houses;
+    }
+
+    double shade_land(double x, double y) const {
+        // Lakes: where large-scale noise peaks; a thin bright shore.
+        const double lake = lakes_.at(x, y) + 0.15 * (lakes_fine_.at(x, y) - 0.5);
+        const double level = urban_ ? 0.86 : 0.84;
+        if (lake > level) return water(x, y, lake - level);
+        if (lake > level - 0.012) return 150 + 20 * mottle_.at(x, y);
+
+        // Gently curved road network: blocks between warped grid lines.
+        const double amp = urban_ ? 10 : 35;
+        const double wx = x + amp * (2 * warp_x_.at(x, y) - 1), wy = y + amp * (2 * warp_y_.at(x, y) - 1);
+        const int bi = find(xs_, wx), bj = find(ys_, wy);
+        const double lx = wx - xs_[bi], ly = wy - ys_[bj];
+        const double bw = xs_[bi + 1] - xs_[bi], bh = ys_[bj + 1] - ys_[bj];
+        const double dist[4] = {lx, bw - lx, ly, bh - ly};
+        const double width[4] = {road_width(true, bi, bj), road_width(true, bi + 1, bj), road_width(false, bj, bi),
+                                 road_width(false, bj + 1, bi)};
+        for (int k = 0; k < 4; ++k)
+            if (dist[k] < width[k] / 2) return road(x, y, width[k], dist[k]);
+
+        // River: a meandering band (after roads, so roads bridge it).
+        const double ry = river_y_ + 120 * std::sin(2 * kPi * x / 900 + river_phase_) + 80 * (river_wobble_.at(x, 0) - 0.5) * 2;
+        const double river_half = urban_ ? 14 : 11;
+        if (std::abs(y - ry) < river_half) return water(x, y, 0.05);
+        if (std::abs(y - ry) < river_half + 4) return vegetation(trees(x, y, 4.0, 0.8, 75), 120);
+
+        const bool hedges[4] = {hedge(true, bi, bj), hedge(true, bi + 1, bj), hedge(false, bj, bi), hedge(false, bj + 1, bi)};
+        for (int k = 0; k < 4; ++k)
+            if (hedges[k] && dist[k] < 3.5) {
+                const double t = trees(x, y, 3.5, 0.85, 80);
+                if (t >= 0) return vegetation(t, 0);
+            }
+
+        switch (land(bi, bj)) {
+            case Land::Forest: return forest(x, y, bi, bj);
+            case Land::Field: return field(x, y, bi, bj, lx, ly, bw, bh);
+            case Land::Meadow: return meadow(x, y, 0.06);
+            case Land::Park: return meadow(x, y, 0.35);
+            case Land::Houses: return houses(x, y, bi, bj, lx, ly, bw, bh);
+            case Land::Industrial: return industrial(x, y, bi, bj, lx, ly, bw, bh);
+        }
+        return 128;
+    }
+
+    double water(double x, double y, double depth) const {
+        return 38 + 10 * mottle_.at(x * 0.3, y * 0.3) + 12 * std::max(0.0, 0.04 - depth) / 0.04;
+    }
+
+    double road(double x, double y, double w, double d) const {
+        if (urban_ || w >= 8) {
+            double v = 88 + 10 * mottle_.at(x, y);
+            if (d < 0.8) v += 25;  // kerb / verge
+            return v;
+        }
+        return 150 + 18 * mottle_.at(x, y) - (d > 0.9 && d < 1.6 ? 20 : 0);  // gravel track with wheel ruts
+    }
+
+    double vegetation(double value, double fallback) const { return value >= 0 ? value * vegetation_gain_ : fallback; }
+
+    // Tree crowns on a jittered grid (cell metres, share of cells with a tree, base brightness):
+    // a lit hemisphere per crown. Returns -1 where no crown covers the point.
+    double trees(double x, double y, double cell, double density, double base) const {
+        const auto cx = static_cast<std::int64_t>(std::floor(x / cell)), cy = static_cast<std::int64_t>(std::floor(y / cell));
+        double best = -1, value = -1;
+        for (std::int64_t j = cy - 1; j <= cy + 1; ++j)
+            for (std::int64_t i = cx - 1; i <= cx + 1; ++i) {
+                const std::uint64_t h = hash(seed_, 60, i, j);
+                if (unit(h) >= density) continue;
+                const double px = (i + 0.15 + 0.7 * unit(h, 1)) * cell, py = (j + 0.15 + 0.7 * unit(h, 2)) * cell;
+                const double r = cell * (0.45 + 0.3 * unit(h, 3));
+                const double dx = x - px, dy = y - py, d2 = dx * dx + dy * dy;
+                if (d2 >= r * r) continue;
+                const double z = std::sqrt(r * r - d2);
+                const double top = z + 2 * unit(h, 4);
+                if (top <= best) continue;
+                best = top;
+                // Light comes from opposite the shadow direction.
+                const double cos_e = std::cos(sun_elevation_), sin_e = std::sin(sun_elevation_);
+                const double light = (-dx * sun_dx_ * cos_e - dy * sun_dy_ * cos_e + z * sin_e) / r;
+                value = base * (0.5 + 0.75 * std::max(0.0, light)) + 25 * (unit(h, 5) - 0.5);
+            }
+        return value;
+    }
+
+    double forest(double x, double y, int bi, int bj) const {
+        const std::uint64_t h = hash(seed_, 70, bi, bj);
+        const bool cut = unit(h) < 0.2 && o_.year >= 2009 + static_cast<int>(12 * unit(h, 1));
+        if (cut) {  // clear-cut: bright soil and young growth
+            const double t = trees(x, y, 2.5, 0.25, 95);
+            return t >= 0 ? vegetation(t, 0) : 135 + 30 * mottle_.at(x, y);
+        }
+        const double stand = stands_.at(x, y);
+        const double t = trees(x, y, 4.0 + 1.5 * unit(h, 2), 0.92, 70 + 35 * stand);
+        if (t >= 0) return vegetation(t, 0);
+        // Gap: shaded forest floor, darker still where a neighbouring crown casts its shadow.
+        const double shadowed = trees(x - 2.5 * sun_dx_, y - 2.5 * sun_dy_, 4.0 + 1.5 * unit(h, 2), 0.92, 1);
+        return shadowed >= 0 ? 26 : 42;
+    }
+
+    double meadow(double x, double y, double tree_density) const {
+        const double t = trees(x, y, 6.0, tree_density, 85);
+        if (t >= 0) return vegetation(t, 0);
+        const double shadowed = trees(x - 4 * sun_dx_, y - 4 * sun_dy_, 6.0, tree_density, 1);
+        const double grass = (120 + 30 * mottle_.at(x, y)) * vegetation_gain_;
+        return shadowed >= 0 ? grass * 0.55 : grass;
+    }
+
+    double field(double x, double y, int bi, int bj, double lx, double ly, double bw, double bh) const {
+        const std::uint64_t hb = hash(seed_, 80, bi, bj);
+        const bool along_x = bw >= bh;
+        const int strips = 1 + static_cast<int>(3 * unit(hb));
+        const double along = along_x ? lx : ly, extent = along_x ? bw : bh;
+        const int k = std::min(strips - 1, static_cast<int>(along / (extent / strips)));
+        const double edge = along - k * (extent / strips);
+        if (k > 0 && edge < 1.2) return 105 + 15 * mottle_.at(x, y);  // strip boundary
+        // Crops rotate every year.
+        const std::uint64_t h = hash(seed_, 81, bi * 8 + k, bj, o_.year);
+        const double kind = unit(h);
+        const double base = 95 + 95 * unit(h, 1);
+        if (kind < 0.2) return base + 25 * (mottle_.at(x, y) - 0.5) + 15 * (grain_.at(x * 2, y * 2) - 0.5);  // bare soil
+        // Rows: parallel or across the strip, with tramlines every ~20 m.
+        const double angle = (unit(h, 2) < 0.5 ? 0 : kPi / 2) + (unit(hb, 3) - 0.5) * 0.1;
+        const double c = std::cos(angle), s = std::sin(angle);
+        const double across = lx * c + ly * s;
+        const double period = std::max(2.6 * o_.metres_per_pixel, 2.0 + 4.0 * unit(h, 3));
+        const double amp = 10 + 18 * unit(h, 4);
+        double v = base + amp * std::sin(2 * kPi * across / period) + 18 * (mottle_.at(x, y) - 0.5);
+        const double tram = std::fmod(std::abs(across), 21.0);
+        if (kind > 0.5 && tram < 1.6) v -= 22;
+        return kind < 0.4 ? v * vegetation_gain_ : v;
+    }
+
+    // Houses stand in rows of lots along the block's long side: two rows (one per road) in a
+    // village, more in town where the rows lie back to back. Row r faces its low edge when even.
+    int house_rows(bool along_x, double bw, double bh) const {
+        const double across = along_x ? bh : bw;
+        return urban_ ? std::max(2, static_cast<int>(std::lround(across / 34))) : 2;
+    }
+
+    // The house on lot k of row `row` of a block, if one stands there this year.
+    bool house(int bi, int bj, int row, int k, bool along_x, double bw, double bh, Rect& r, double& roof) const {
+        const double extent = along_x ? bw : bh;
+        const int rows = house_rows(along_x, bw, bh);
+        if (row < 0 || row >= rows) return false;
+        const double depth = (along_x ? bh : bw) / rows;
+        const std::uint64_t hb = hash(seed_, 90, bi, bj);
+        const double lot = 14 + 10 * unit(hb);
+        if (k < 0 || (k + 1) * lot > extent) return false;
+        const std::uint64_t h = hash(seed_, 91, bi * 64 + row, bj, k);
+        const int built = unit(h) < 0.85 ? 1900 : 2000 + static_cast<int>(21 * unit(h, 1));
+        const int demolished = unit(h, 2) < 0.04 ? 2005 + static_cast<int>(16 * unit(h, 3)) : 9999;
+        if (o_.year < built || o_.year >= demolished || unit(h, 8) < (urban_ ? 0.05 : 0.2)) return false;
+        const double w = std::min(lot - 3, 8 + 6 * unit(h, 4)), d = std::min(depth - 8, 8 + 5 * unit(h, 5));
+        if (w < 4 || d < 4) return false;
+        const double set_back = 4 + 3 * unit(h, 6);
+        const double a0 = k * lot + (lot - w) / 2, a1 = a0 + w;
+        const double b0 = row * depth + (row % 2 == 0 ? set_back : depth - set_back - d), b1 = b0 + d;
+        r = along_x ? Rect{a0, b0, a1, b1} : Rect{b0, a0, b1, a1};
+        roof = 70 + 120 * unit(h, 7);
+        return true;
+    }
+
+    double houses(double x, double y, int bi, int bj, double lx, double ly, double bw, double bh) const {
+        const bool along_x = bw >= bh;
+        const std::uint64_t hb = hash(seed_, 90, bi, bj);
+        const double lot = 14 + 10 * unit(hb);
+        const double along = along_x ? lx : ly, across = along_x ? ly : lx;
+        const int rows = house_rows(along_x, bw, bh);
+        const int row = std::clamp(static_cast<int>(across / ((along_x ? bh : bw) / rows)), 0, rows - 1);
+        const int k = static_cast<int>(std::floor(along / lot));
+        bool shadow = false;
+        for (int r = row - 1; r <= row + 1; ++r)
+            for (int kk = k - 1; kk <= k + 1; ++kk) {
+                Rect rect;
+                double roof;
+                if (!house(bi, bj, r, kk, along_x, bw, bh, rect, roof)) continue;
+                if (rect.contains(lx, ly)) {
+                    // Gable roof: the ridge runs along the long side; the half facing the sun is lit.
+                    const bool ridge_x = (rect.x1 - rect.x0) >= (rect.y1 - rect.y0);
+                    const double mid = ridge_x ? (rect.y0 + rect.y1) / 2 : (rect.x0 + rect.x1) / 2;
+                    const double pos = ridge_x ? ly : lx, sun = ridge_x ? -sun_dy_ : -sun_dx_;
+                    const bool lit = (pos < mid) == (sun < 0);
+                    if (std::abs(pos - mid) < 0.35) return roof * 1.15;
+                    return roof * (lit ? 1.1 : 0.72);
+                }
+                if (in_cast_shadow(rect, lx, ly, sun_dx_, sun_dy_, 6.5 * shadow_per_metre_)) shadow = true;
+            }
+        // Gardens: lawn, a few trees, a paved drive to the street in town.
+        double ground = meadow(x, y, urban_ ? 0.05 : 0.08);
+        if (urban_ && std::fmod(along, lot) < 3.0) ground = 115 + 10 * mottle_.at(x, y);
+        return shadow ? ground * 0.5 : ground;
+    }
+
+    double industrial(double x, double y, int bi, int bj, double lx, double ly, double bw, double bh) const {
+        const std::uint64_t h = hash(seed_, 95, bi, bj);
+        const bool built = o_.year >= (unit(h) < 0.8 ? 1900 : 2005 + static_cast<int>(15 * unit(h, 1)));
+        const Rect hall{12 + 10 * unit(h, 2), 12 + 10 * unit(h, 3), bw - 12 - 15 * unit(h, 4), bh - 12 - 15 * unit(h, 5)};
+        if (built && hall.x1 > hall.x0 + 10 && hall.y1 > hall.y0 + 10) {
+            if (hall.contains(lx, ly)) {
+                double v = 165 + 45 * unit(h, 6);
+                if (std::fmod(lx - hall.x0, 9.0) < 1.5 && std::fmod(ly - hall.y0, 12.0) < 1.5) v -= 60;  // roof vents
+                return v;
+            }
+            const double v = 100 + 12 * mottle_.at(x, y);  // car park
+            return in_cast_shadow(hall, lx, ly, sun_dx_, sun_dy_, 9 * shadow_per_metre_) ? v * 0.5 : v;
+        }
+        return meadow(x, y, 0.05);
+    }
+
+    ProceduralMapOptions o_;
+    bool urban_;
+    std::uint64_t seed_;
+    ValueNoise warp_x_, warp_y_, lakes_, lakes_fine_, mottle_, grain_, stands_, river_wobble_;
+    std::vector<double> xs_, ys_;
+    double sun_dx_ = 0, sun_dy_ = -1, sun_elevation_ = 0.8, shadow_per_metre_ = 1;
+    double gain_ = 1, offset_ = 0, vegetation_gain_ = 1;
+    double river_y_ = 0, river_phase_ = 0;
+};
+
+}  // namespace
+
+TerrainStyle parse_terrain_style(std::string_view text) {
+    if (text == "forest") return TerrainStyle::Forest;
+    if (text == "urban") return TerrainStyle::Urban;
+    throw Error("terrain style '" + std::string(text) + "': expected forest or urban");
+}
+
+const char* to_string(TerrainStyle style) { return style == TerrainStyle::Urban ? "urban" : "forest"; }
+
+int ProceduralMapOptions::width_px() const { return static_cast<int>(std::lround(width_m / metres_per_pixel)); }
+int ProceduralMapOptions::height_px() const { return static_cast<int>(std::lround(height_m / metres_per_pixel)); }
+
+void ProceduralMapOptions::validate() const {
+    if (!(metres_per_pixel >= 0.05 && metres_per_pixel <= 20))
+        throw Error("procedural map: resolution " + std::to_string(metres_per_pixel) + " m/px must be in [0.05, 20]");
+    if (!(width_m > 0 && height_m > 0) || width_px() < 2 || height_px() < 2)
+        throw Error("procedural map: size " + std::to_string(width_m) + " x " + std::to_string(height_m) +
+                    " m is smaller than 2x2 pixels");
+    if (double(width_px()) * height_px() > 1.0e9)
+        throw Error("procedural map: " + std::to_string(width_px()) + "x" + std::to_string(height_px()) +
+                    " pixels is too large; generate it region by region");
+}
+
+GrayImage generate_procedural_region(const ProceduralMapOptions& options, int x0, int y0, int w, int h) {
+    options.validate();
+    if (w <= 0 || h <= 0) throw Error("procedural region: size " + std::to_string(w) + "x" + std::to_string(h) + " is empty");
+    const Scene scene(options);
+    GrayImage img{w, h, std::vector<std::uint8_t>(std::size_t(w) * h)};
+    const double mpp = options.metres_per_pixel;
+#pragma omp parallel for schedule(dynamic, 8)
+    for (int j = 0; j < h; ++j) {
+        std::uint8_t* row = img.pixels.data() + std::size_t(j) * w;
+        const double y = (y0 + j + 0.5) * mpp;
+        for (int i = 0; i < w; ++i) row[i] = static_cast<std::uint8_t>(std::lround(scene.shade((x0 + i + 0.5) * mpp, y)));
+    }
+    return img;
+}
+
+Map generate_procedural_map(const ProceduralMapOptions& options) {
+    options.validate();
+    Map map;
+    map.image = generate_procedural_region(options, 0, 0, options.width_px(), options.height_px());
+    map.metres_per_pixel = options.metres_per_pixel;
+    map.origin = options.origin;
+    return map;
+}
+
+}  // namespace trn::sim

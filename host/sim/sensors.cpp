@@ -1,0 +1,47 @@
+#include "trn/sim/sensors.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "random.hpp"
+
+namespace trn::sim {
+namespace {
+constexpr double kDeg = 3.14159265358979323846 / 180.0;
+}
+
+double wrap_angle(double a) {
+    constexpr double kTwoPi = 6.283185307179586;
+    a = std::fmod(a, kTwoPi);
+    if (a <= -kTwoPi / 2) a += kTwoPi;
+    if (a > kTwoPi / 2) a -= kTwoPi;
+    return a;
+}
+
+OdometrySimulator::OdometrySimulator(const OdometryConfig& config)
+    : config_(config), rng_(detail::mix64(config.seed ^ 0x0D0D0D0Dull)), heading_error_(config.heading_bias_deg * kDeg) {}
+
+Vec3 OdometrySimulator::step(const Vec3& d, double dt, double yaw_rate) {
+    using detail::normal;
+    const double turned = std::abs(yaw_rate) * dt;
+    if (turned > 0) heading_error_ += config_.turn_heading_noise_deg_per_sqrt_rad * kDeg * std::sqrt(turned) * normal(rng_);
+    const double k = 1 + config_.scale_error;
+    const double c = std::cos(heading_error_), s = std::sin(heading_error_);
+    // East/north components; a positive heading error turns the track clockwise, like the heading.
+    const double e = k * (c * d.x + s * d.y), n = k * (-s * d.x + c * d.y);
+    const double walk =
+        config_.random_walk_m_per_sqrt_s * std::sqrt(std::max(dt, 0.0)) * (1 + config_.turn_random_walk_gain_per_rad_s * std::abs(yaw_rate));
+    estimate_.x += e + walk * normal(rng_);
+    estimate_.y += n + walk * normal(rng_);
+    estimate_.z += k * d.z + walk * normal(rng_);
+    return estimate_;
+}
+
+Magnetometer::Magnetometer(const MagnetometerConfig& config) : config_(config), rng_(detail::mix64(config.seed ^ 0x3A6E7u)) {}
+
+double Magnetometer::read(double true_heading) {
+    const double noise = std::clamp(config_.sigma_deg * detail::normal(rng_), -config_.bound_deg, config_.bound_deg);
+    return wrap_angle(true_heading + noise * kDeg);
+}
+
+}  // namespace trn::sim
