@@ -25,14 +25,14 @@ void instant_rules(const PowerTrace& tr, double s, double e, double& trap, doubl
     double t_prev = s, p_prev = interpolate(tr, i, s), held = tr.w[i - 1];
     while (i < tr.size() && tr.t[i] < e) {
         const double tz = 0.5 * (p_prev + tr.w[i]) * (tr.t[i] - t_prev), hz = held * (tr.t[i] - t_prev);
-        trap += tz, hold += hz, diff += std::abs(tz - hz);
+        trap += tz, hold += hz, diff += std::abs(tr.w[i] - tr.w[i - 1]) * (tr.t[i] - t_prev);
         t_prev = tr.t[i], p_prev = tr.w[i], held = tr.w[i];
         ++i;
     }
     const std::size_t k = std::min(i, tr.size() - 1);
     const double p_end = interpolate(tr, k, e);
     const double tz = 0.5 * (p_prev + p_end) * (e - t_prev), hz = held * (e - t_prev);
-    trap += tz, hold += hz, diff += std::abs(tz - hz);
+    trap += tz, hold += hz, diff += std::abs(tr.w[k] - tr.w[k - 1]) * (e - t_prev);
     if (abs_diff) *abs_diff = diff;
 }
 
@@ -89,8 +89,8 @@ IntervalEnergy integrate_interval(const PowerTrace& tr, double start, double end
         r.energy_j = rule == Rule::Trapezoid ? a : b;
         r.other_j = rule == Rule::Trapezoid ? b : a;
     }
-    // Per sub-interval |trapezoid - hold| (summed without cancellation between rising and
-    // falling edges) bounds any monotone behaviour between two samples.
+    // Between two samples the power can be anywhere between them (a step at either end), so
+    // each piece adds |w[k+1] - w[k]| x its length; summed without cancellation between edges.
     r.error_j = std::max(spread, std::abs(a - b)) + 0.5 * tr.resolution_w * (end - start);
     return r;
 }

@@ -2,9 +2,9 @@
 // Energy of intervals of a power trace. Trapezoid rule with the power interpolated at each
 // interval's exact start and end (default), or zero-order hold (each sample held until the
 // next). Each frame gets its sample count and an error bound
-//     |trapezoid - hold| + resolution/2 x duration
-// (the two rules bracket any reasonable reconstruction between samples; quantisation adds at
-// most half an LSB at every instant). Frames that cannot be measured are flagged, never dropped,
+//     sum over sample intervals of |w[k+1] - w[k]| x covered length + resolution/2 x duration
+// (true power that moves monotonically between two samples, even a step at either end, stays
+// within that; quantisation adds at most half an LSB at every instant). Frames that cannot be measured are flagged, never dropped,
 // and their energy is 0 rather than NaN.
 #include <string>
 #include <vector>
