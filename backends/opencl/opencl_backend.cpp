@@ -1,0 +1,309 @@
+// The OpenCL backend: NCC scoring with one work-group per particle and 3x3 Sobel through local
+// memory (kernels/opencl/*.cl). Buffers live across calls and only grow; phase times come from
+// OpenCL profiling events.
+#include "opencl_backend.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <vector>
+
+#include "device_buffer.hpp"
+#include "embedded_kernels.hpp"
+#include "program_cache.hpp"
+
+namespace trn::opencl {
+namespace {
+
+// Work items per particle: wide on GPUs, where a work-group maps to warps; narrower on CPU
+// devices, where PoCL runs a work-group as a loop on one core.
+constexpr std::size_t kGpuWorkGroup = 256;
+constexpr std::size_t kCpuWorkGroup = 64;
+constexpr std::size_t kSobelTile = 16;
+constexpr int kSumsPerParticle = 8;    // n, sj, sjj, sjt, st, stt, shift, (pad): see ncc_score.cl
+constexpr int kAffinePerParticle = 8;  // a, b, c, d, tx, ty, (pad, pad)
+
+std::size_t floor_pow2(std::size_t n) {
+    std::size_t p = 1;
+    while (p * 2 <= n) p *= 2;
+    return p;
+}
+
+double event_ms(cl_event e) {
+    cl_ulong start = 0, end = 0;
+    check(clGetEventProfilingInfo(e, CL_PROFILING_COMMAND_START, sizeof start, &start, nullptr),
+          "clGetEventProfilingInfo(START)");
+    check(clGetEventProfilingInfo(e, CL_PROFILING_COMMAND_END, sizeof end, &end, nullptr), "clGetEventProfilingInfo(END)");
+    return end > start ? double(end - start) * 1e-6 : 0.0;
+}
+
+std::string size_text(int w, int h) { return std::to_string(w) + "x" + std::to_string(h); }
+
+class OpenClMap : public MapStorage {
+public:
+    OpenClMap(const Backend* owner, int w, int h, MemHandle mem) : MapStorage(owner, w, h), mem_(std::move(mem)) {}
+    cl_mem mem() const { return mem_.get(); }
+
+private:
+    MemHandle mem_;
+};
+
+template <typename T>
+void set_arg(cl_kernel k, cl_uint index, const T& value, const char* kernel_name) {
+    check(clSetKernelArg(k, index, sizeof(T), &value),
+          std::string("clSetKernelArg(") + kernel_name + ", argument " + std::to_string(index) + ")");
+}
+
+KernelHandle make_kernel(cl_program program, const char* name) {
+    cl_int err = CL_SUCCESS;
+    KernelHandle k(clCreateKernel(program, name, &err));
+    check(err, std::string("clCreateKernel(") + name + ")");
+    return k;
+}
+
+class OpenClBackend final : public Backend {
+public:
+    OpenClBackend(const DeviceRef& device, int index) : device_(device), info_(describe_device(device, index)) {
+        max_alloc_ = device_value<cl_ulong>(device.device, CL_DEVICE_MAX_MEM_ALLOC_SIZE);
+        const auto max_wg = device_value<std::size_t>(device.device, CL_DEVICE_MAX_WORK_GROUP_SIZE);
+        wg_size_ = std::min(info_.type == "gpu" ? kGpuWorkGroup : kCpuWorkGroup, floor_pow2(max_wg));
+        tile_ = std::min(kSobelTile, floor_pow2(static_cast<std::size_t>(std::max(1.0, std::sqrt(double(max_wg))))));
+
+        cl_int err = CL_SUCCESS;
+        context_.reset(clCreateContext(nullptr, 1, &device_.device, nullptr, nullptr, &err));
+        check(err, "clCreateContext(" + info_.device + ")");
+        queue_.reset(clCreateCommandQueue(context_.get(), device_.device, CL_QUEUE_PROFILING_ENABLE, &err));
+        check(err, "clCreateCommandQueue(" + info_.device + ", profiling)");
+
+        const ProgramCacheSettings cache = program_cache_settings();
+        const EmbeddedKernel ncc = embedded_ncc_score(), sobel = embedded_sobel3x3();
+        BuiltProgram ncc_program = build_program(context_.get(), device_, ncc.file, ncc.source, ncc.sha256,
+                                                 "-DTRN_WG_SIZE=" + std::to_string(wg_size_), cache);
+        BuiltProgram sobel_program = build_program(context_.get(), device_, sobel.file, sobel.source, sobel.sha256,
+                                                   "-DTRN_TILE=" + std::to_string(tile_), cache);
+        const bool warm = ncc_program.from_cache && sobel_program.from_cache;
+        const double build_ms = ncc_program.build_ms + sobel_program.build_ms;
+        record_build_time(cache, device_, warm, build_ms);
+        ncc_program_ = std::move(ncc_program.program);
+        sobel_program_ = std::move(sobel_program.program);
+        dense_ = make_kernel(ncc_program_.get(), "ncc_score_dense");
+        sparse_ = make_kernel(ncc_program_.get(), "ncc_score_sparse");
+        sobel_ = make_kernel(sobel_program_.get(), "sobel3x3");
+
+        info_.details += "; NCC work-group " + std::to_string(wg_size_) + ", Sobel tile " + std::to_string(tile_) + "x" +
+                         std::to_string(tile_) + "; programs " + (warm ? "loaded from the cache" : "built from source") +
+                         " in " + std::to_string(static_cast<long>(build_ms + 0.5)) + " ms";
+    }
+
+    const DeviceInfo& info() const override { return info_; }
+
+protected:
+    MapHandle do_upload_map(GrayView map, PhaseTimes* times) override {
+        const std::size_t bytes = std::size_t(map.width) * std::size_t(map.height);
+        const std::string what = "map " + size_text(map.width, map.height) + " (" + std::to_string(bytes >> 20) + " MiB)";
+        if (bytes > max_alloc_)
+            throw Error("upload_map: " + what + " does not fit in one buffer on " + info_.name + " (" + info_.device +
+                        "): its largest buffer is " + std::to_string(max_alloc_ >> 20) +
+                        " MiB (CL_DEVICE_MAX_MEM_ALLOC_SIZE)");
+        cl_int err = CL_SUCCESS;
+        MemHandle mem(clCreateBuffer(context_.get(), CL_MEM_READ_ONLY, bytes, nullptr, &err));
+        check(err, "clCreateBuffer(" + what + ") on " + info_.name);
+        const std::size_t origin[3] = {0, 0, 0};
+        const std::size_t region[3] = {std::size_t(map.width), std::size_t(map.height), 1};
+        cl_event e = nullptr;
+        check(clEnqueueWriteBufferRect(queue_.get(), mem.get(), CL_TRUE, origin, origin, region, std::size_t(map.width), 0,
+                                       std::size_t(map.stride), 0, map.data, 0, nullptr, &e),
+              "clEnqueueWriteBufferRect(" + what + ") on " + info_.name);
+        EventHandle upload(e);
+        if (times) times->upload_ms = event_ms(upload.get());
+        return std::make_shared<OpenClMap>(this, map.width, map.height, std::move(mem));
+    }
+
+    void do_score(const MapStorage& storage, const ScoringPlan& plan, std::span<const Pose> poses,
+                  std::span<ParticleScore> out, PhaseTimes* times) override;
+    void do_sobel(GrayView src, Int16View gx, Int16View gy, PhaseTimes* times) override;
+
+private:
+    // Uploads the plan's centred template (and sparse offsets) unless the device already holds
+    // exactly these values: a particle filter scores many pose batches against one frame.
+    void upload_template(const ScoringPlan& plan, std::vector<EventHandle>& uploads);
+
+    DeviceRef device_;
+    DeviceInfo info_;
+    cl_ulong max_alloc_ = 0;
+    std::size_t wg_size_ = 0, tile_ = 0;
+    ContextHandle context_;
+    QueueHandle queue_;
+    ProgramHandle ncc_program_, sobel_program_;
+    KernelHandle dense_, sparse_, sobel_;
+
+    DeviceBuffer affines_, sums_, centered_, offsets_;
+    DeviceBuffer sobel_src_, sobel_gx_, sobel_gy_;
+    std::vector<float> host_affines_, host_offsets_;
+    std::vector<cl_uint> host_sums_;
+    std::vector<float> device_centered_, device_offsets_;  // what the device buffers hold now
+};
+
+void OpenClBackend::upload_template(const ScoringPlan& plan, std::vector<EventHandle>& uploads) {
+    const std::size_t count = plan.sample_count();
+    if (centered_.ensure(context_.get(), count * sizeof(float), CL_MEM_READ_ONLY, max_alloc_, "centred template"))
+        device_centered_.clear();
+    const bool same_values = device_centered_.size() == count &&
+                             std::memcmp(device_centered_.data(), plan.centered.data(), count * sizeof(float)) == 0;
+    if (!same_values) {
+        cl_event e = nullptr;
+        check(clEnqueueWriteBuffer(queue_.get(), centered_.get(), CL_FALSE, 0, count * sizeof(float), plan.centered.data(), 0,
+                                   nullptr, &e),
+              "clEnqueueWriteBuffer(centred template) on " + info_.name);
+        uploads.emplace_back(e);
+        device_centered_.assign(plan.centered.begin(), plan.centered.end());
+    }
+    if (plan.dense) return;
+
+    // Same float operations as the dense kernel's (float)u - cx.
+    host_offsets_.resize(2 * count);
+    for (std::size_t k = 0; k < count; ++k) {
+        host_offsets_[2 * k] = float(plan.points[k].u) - plan.cx;
+        host_offsets_[2 * k + 1] = float(plan.points[k].v) - plan.cy;
+    }
+    if (offsets_.ensure(context_.get(), 2 * count * sizeof(float), CL_MEM_READ_ONLY, max_alloc_, "sample offsets"))
+        device_offsets_.clear();
+    if (device_offsets_ != host_offsets_) {
+        cl_event e = nullptr;
+        check(clEnqueueWriteBuffer(queue_.get(), offsets_.get(), CL_FALSE, 0, 2 * count * sizeof(float), host_offsets_.data(),
+                                   0, nullptr, &e),
+              "clEnqueueWriteBuffer(sample offsets) on " + info_.name);
+        uploads.emplace_back(e);
+        device_offsets_ = host_offsets_;
+    }
+}
+
+void OpenClBackend::do_score(const MapStorage& storage, const ScoringPlan& plan, std::span<const Pose> poses,
+                             std::span<ParticleScore> out, PhaseTimes* times) {
+    const OpenClMap& map = static_cast<const OpenClMap&>(storage);
+    const std::size_t n = poses.size();
+    if (plan.sample_count() > std::size_t(INT32_MAX) || n > std::size_t(INT32_MAX) / wg_size_)
+        throw Error("score: " + std::to_string(n) + " poses x " + std::to_string(plan.sample_count()) +
+                    " samples is beyond what the OpenCL kernels index with 32-bit integers");
+
+    host_affines_.resize(n * kAffinePerParticle);
+    for (std::size_t i = 0; i < n; ++i) {
+        const Affine A = pose_to_affine(poses[i]);
+        float* dst = host_affines_.data() + i * kAffinePerParticle;
+        dst[0] = A.a, dst[1] = A.b, dst[2] = A.c, dst[3] = A.d, dst[4] = A.tx, dst[5] = A.ty, dst[6] = 0, dst[7] = 0;
+    }
+    affines_.ensure(context_.get(), n * kAffinePerParticle * sizeof(float), CL_MEM_READ_ONLY, max_alloc_, "pose affines");
+    sums_.ensure(context_.get(), n * kSumsPerParticle * sizeof(cl_uint), CL_MEM_WRITE_ONLY, max_alloc_, "particle sums");
+
+    std::vector<EventHandle> uploads;
+    uploads.reserve(3);
+    upload_template(plan, uploads);
+    cl_event e = nullptr;
+    check(clEnqueueWriteBuffer(queue_.get(), affines_.get(), CL_FALSE, 0, n * kAffinePerParticle * sizeof(float),
+                               host_affines_.data(), 0, nullptr, &e),
+          "clEnqueueWriteBuffer(pose affines) on " + info_.name);
+    uploads.emplace_back(e);
+
+    const cl_mem map_mem = map.mem(), affines = affines_.get(), centered = centered_.get(), sums = sums_.get();
+    const cl_int map_w = map.width(), map_h = map.height();
+    cl_kernel k = plan.dense ? dense_.get() : sparse_.get();
+    const char* kname = plan.dense ? "ncc_score_dense" : "ncc_score_sparse";
+    set_arg(k, 0, map_mem, kname);
+    set_arg(k, 1, map_w, kname);
+    set_arg(k, 2, map_h, kname);
+    set_arg(k, 3, affines, kname);
+    set_arg(k, 4, centered, kname);
+    if (plan.dense) {
+        set_arg(k, 5, cl_int(plan.width), kname);
+        set_arg(k, 6, cl_int(plan.height), kname);
+        set_arg(k, 7, plan.cx, kname);
+        set_arg(k, 8, plan.cy, kname);
+        set_arg(k, 9, sums, kname);
+    } else {
+        const cl_mem offsets = offsets_.get();
+        set_arg(k, 5, offsets, kname);
+        set_arg(k, 6, cl_int(plan.sample_count()), kname);
+        set_arg(k, 7, sums, kname);
+    }
+    const std::size_t global = n * wg_size_, local = wg_size_;
+    check(clEnqueueNDRangeKernel(queue_.get(), k, 1, nullptr, &global, &local, 0, nullptr, &e),
+          std::string("clEnqueueNDRangeKernel(") + kname + ", " + std::to_string(n) + " particles) on " + info_.name);
+    EventHandle execute(e);
+
+    host_sums_.resize(n * kSumsPerParticle);
+    check(clEnqueueReadBuffer(queue_.get(), sums, CL_TRUE, 0, n * kSumsPerParticle * sizeof(cl_uint), host_sums_.data(), 0,
+                              nullptr, &e),
+          "clEnqueueReadBuffer(particle sums) on " + info_.name);
+    EventHandle download(e);
+
+    for (std::size_t i = 0; i < n; ++i) {
+        const cl_uint* s = host_sums_.data() + i * kSumsPerParticle;
+        auto f = [&](int q) {
+            float v;
+            std::memcpy(&v, &s[q], sizeof v);
+            return double(v);
+        };
+        const ParticleSums sums_i{double(s[0]), f(1), f(2), f(3), f(4), f(5), f(6)};
+        out[i] = finalize_score(sums_i, plan);
+    }
+    if (times) {
+        for (const EventHandle& u : uploads) times->upload_ms += event_ms(u.get());
+        times->execute_ms = event_ms(execute.get());
+        times->download_ms = event_ms(download.get());
+    }
+}
+
+void OpenClBackend::do_sobel(GrayView src, Int16View gx, Int16View gy, PhaseTimes* times) {
+    const std::size_t w = std::size_t(src.width), h = std::size_t(src.height);
+    const std::string what = size_text(src.width, src.height);
+    sobel_src_.ensure(context_.get(), w * h, CL_MEM_READ_ONLY, max_alloc_, "Sobel source");
+    sobel_gx_.ensure(context_.get(), w * h * sizeof(cl_short), CL_MEM_WRITE_ONLY, max_alloc_, "Sobel gx");
+    sobel_gy_.ensure(context_.get(), w * h * sizeof(cl_short), CL_MEM_WRITE_ONLY, max_alloc_, "Sobel gy");
+
+    const std::size_t origin[3] = {0, 0, 0};
+    cl_event e = nullptr;
+    const std::size_t src_region[3] = {w, h, 1};
+    check(clEnqueueWriteBufferRect(queue_.get(), sobel_src_.get(), CL_FALSE, origin, origin, src_region, w, 0,
+                                   std::size_t(src.stride), 0, src.data, 0, nullptr, &e),
+          "clEnqueueWriteBufferRect(Sobel source " + what + ") on " + info_.name);
+    EventHandle upload(e);
+
+    const cl_mem in = sobel_src_.get(), ox = sobel_gx_.get(), oy = sobel_gy_.get();
+    const cl_int width = src.width, height = src.height;
+    cl_kernel k = sobel_.get();
+    set_arg(k, 0, in, "sobel3x3");
+    set_arg(k, 1, width, "sobel3x3");
+    set_arg(k, 2, height, "sobel3x3");
+    set_arg(k, 3, ox, "sobel3x3");
+    set_arg(k, 4, oy, "sobel3x3");
+    const std::size_t global[2] = {(w + tile_ - 1) / tile_ * tile_, (h + tile_ - 1) / tile_ * tile_};
+    const std::size_t local[2] = {tile_, tile_};
+    check(clEnqueueNDRangeKernel(queue_.get(), k, 2, nullptr, global, local, 0, nullptr, &e),
+          "clEnqueueNDRangeKernel(sobel3x3, " + what + ") on " + info_.name);
+    EventHandle execute(e);
+
+    // Outputs may be ROIs of larger images: copy the WxH block row by row into their strides.
+    const std::size_t out_region[3] = {w * sizeof(cl_short), h, 1};
+    check(clEnqueueReadBufferRect(queue_.get(), ox, CL_FALSE, origin, origin, out_region, w * sizeof(cl_short), 0,
+                                  std::size_t(gx.stride) * sizeof(cl_short), 0, gx.data, 0, nullptr, &e),
+          "clEnqueueReadBufferRect(Sobel gx " + what + ") on " + info_.name);
+    EventHandle read_x(e);
+    check(clEnqueueReadBufferRect(queue_.get(), oy, CL_TRUE, origin, origin, out_region, w * sizeof(cl_short), 0,
+                                  std::size_t(gy.stride) * sizeof(cl_short), 0, gy.data, 0, nullptr, &e),
+          "clEnqueueReadBufferRect(Sobel gy " + what + ") on " + info_.name);
+    EventHandle read_y(e);  // blocking, and the queue is in order: both reads are done
+    if (times) {
+        times->upload_ms = event_ms(upload.get());
+        times->execute_ms = event_ms(execute.get());
+        times->download_ms = event_ms(read_x.get()) + event_ms(read_y.get());
+    }
+}
+
+}  // namespace
+
+std::unique_ptr<Backend> make_opencl_backend(const DeviceRef& device, int index) {
+    return std::make_unique<OpenClBackend>(device, index);
+}
+
+}  // namespace trn::opencl

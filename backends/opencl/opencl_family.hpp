@@ -1,0 +1,8 @@
+#pragma once
+#include "trn/registry.hpp"
+
+namespace trn {
+// The OpenCL family: every device of every OpenCL platform as "opencl:<n>"; the device for a
+// bare "opencl" comes from $TRN_OPENCL_DEVICE (an index or a name substring).
+BackendFamily opencl_family();
+}  // namespace trn
