@@ -61,6 +61,8 @@ int main(int argc, char** argv) {
         std::string devices;
         for (const DeviceEntry& d : bench_devices()) devices += (devices.empty() ? "" : ", ") + d.name;
         benchmark::AddCustomContext("trn_sweep", full ? "full" : "quick");
+        // The command that produced this run (scripts/bench-report passes its own command line).
+        if (const char* cmd = std::getenv("TRN_BENCH_COMMAND"); cmd && *cmd) benchmark::AddCustomContext("trn_command", cmd);
         benchmark::AddCustomContext("trn_devices", devices);
         benchmark::AddCustomContext("trn_map", bench_map().source);
         benchmark::AddCustomContext("trn_cold_working_set_MiB", std::to_string(sweep.cold_bytes >> 20));
