@@ -7,6 +7,7 @@ namespace trn::cli {
 void add_devices_command(CLI::App& app);
 void add_sobel_command(CLI::App& app);
 void add_score_command(CLI::App& app);
+void add_demo_command(CLI::App& app);
 void add_frames_command(CLI::App& app);    // cmd_frames.cpp   (energy frame runner)
 void add_energy_command(CLI::App& app);    // cmd_energy.cpp   (energy harness)
 void add_simulate_command(CLI::App& app);  // cmd_simulate.cpp (flight simulator)

@@ -11,6 +11,7 @@ int main(int argc, char** argv) {
     trn::cli::add_devices_command(app);
     trn::cli::add_sobel_command(app);
     trn::cli::add_score_command(app);
+    trn::cli::add_demo_command(app);
     trn::cli::add_frames_command(app);
     trn::cli::add_energy_command(app);
     trn::cli::add_simulate_command(app);
