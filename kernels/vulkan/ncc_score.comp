@@ -19,6 +19,7 @@
 #include "map_access.glsl"
 
 #define TRN_MAX_MAP_CHUNKS 8
+#define TRN_RUN 32u  // samples per invocation in one inner float run
 
 layout(constant_id = 0) const uint WORKGROUP_SIZE = 64;   // power of two
 layout(constant_id = 1) const uint SAMPLE_COUNT = 1;      // template samples in the plan
@@ -87,24 +88,36 @@ void main() {
     float xmax = float(pc.map_width - 1u), ymax = float(pc.map_height - 1u);
     float shift = map_value(clamp(tx, 0.0, xmax), clamp(ty, 0.0, ymax));
 
+    // Two-level float sums: short runs of TRN_RUN samples per invocation, then the runs' totals,
+    // which keeps rounding error small even when one invocation covers thousands of samples.
     uint n = 0u;
     float sj = 0.0, sjj = 0.0, sjt = 0.0, st = 0.0, stt = 0.0;
-    for (uint k = lid; k < SAMPLE_COUNT; k += WORKGROUP_SIZE) {
-        float du = samples[k];
-        float dv = samples[SAMPLE_COUNT + k];
-        float t = samples[2u * SAMPLE_COUNT + k];
-        precise float px = (tx + a * du) + b * dv;
-        precise float py = (ty + c * du) + d * dv;
-        bool valid = px >= 0.0 && py >= 0.0 && px <= xmax && py <= ymax;
-        // Clamped so that invalid samples still read inside the map; a valid position is unchanged.
-        float j = map_value(clamp(px, 0.0, xmax), clamp(py, 0.0, ymax)) - shift;
-        float w = valid ? 1.0 : 0.0;
-        n += valid ? 1u : 0u;
-        sj += w * j;
-        sjj += w * (j * j);
-        sjt += w * (j * t);
-        st += w * t;
-        stt += w * (t * t);
+    const uint run_span = WORKGROUP_SIZE * TRN_RUN;
+    for (uint base = lid; base < SAMPLE_COUNT; base += run_span) {
+        float rj = 0.0, rjj = 0.0, rjt = 0.0, rt = 0.0, rtt = 0.0;
+        uint end = min(SAMPLE_COUNT, base + run_span);
+        for (uint k = base; k < end; k += WORKGROUP_SIZE) {
+            float du = samples[k];
+            float dv = samples[SAMPLE_COUNT + k];
+            float t = samples[2u * SAMPLE_COUNT + k];
+            precise float px = (tx + a * du) + b * dv;
+            precise float py = (ty + c * du) + d * dv;
+            bool valid = px >= 0.0 && py >= 0.0 && px <= xmax && py <= ymax;
+            // Clamped so that invalid samples still read inside the map; a valid position is unchanged.
+            float j = map_value(clamp(px, 0.0, xmax), clamp(py, 0.0, ymax)) - shift;
+            float w = valid ? 1.0 : 0.0;
+            n += valid ? 1u : 0u;
+            rj += w * j;
+            rjj += w * (j * j);
+            rjt += w * (j * t);
+            rt += w * t;
+            rtt += w * (t * t);
+        }
+        sj += rj;
+        sjj += rjj;
+        sjt += rjt;
+        st += rt;
+        stt += rtt;
     }
 
 #ifdef TRN_SUBGROUP_REDUCE
