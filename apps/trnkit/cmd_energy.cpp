@@ -1,13 +1,54 @@
-// Placeholder until the subsystem lands: the subcommand exists and says so plainly.
+// `trnkit energy ...`: the energy harness. Built so far: `inspect` (parse a power log and report
+// its sampling hygiene) and `integrate-span` (energy of one time span of a log).
+#include <cstdio>
+#include <iostream>
+
 #include "commands.hpp"
+#include "trn/energy/integrate.hpp"
+#include "trn/energy/parsers.hpp"
 #include "trn/error.hpp"
 
 namespace trn::cli {
 
 void add_energy_command(CLI::App& app) {
-    auto* cmd = app.add_subcommand("energy", "Power logs -> joules per frame -> platform comparison (not built yet)");
-    cmd->allow_extras();
-    cmd->callback([] { throw Error("'energy' is not part of this build yet"); });
+    auto* energy = app.add_subcommand("energy", "Power logs -> joules (inspect, integrate-span)");
+    energy->require_subcommand(1);
+    struct Args {
+        std::string log, format = "auto";
+        std::vector<std::string> opts;
+        double start = 0, end = 0;
+        bool hold = false;
+    };
+    auto a = std::make_shared<Args>();
+    auto add_log_options = [a](CLI::App* c) {
+        c->add_option("log", a->log, "Power log file")->required();
+        c->add_option("--format", a->format, "auto or a format name (see docs/ENERGY.md)")->capture_default_str();
+        c->add_option("--opt", a->opts, "Parser option KEY=VALUE (repeatable)");
+    };
+    auto* inspect = energy->add_subcommand("inspect", "Parse a power log and report format, sample rate, gaps and hygiene notes");
+    add_log_options(inspect);
+    inspect->callback([a] {
+        const auto tr = energy::read_power_log(a->log, a->format, energy::parse_option_list(a->opts));
+        const auto s = energy::describe_sampling(tr);
+        std::printf("%s: format %s, power = %s\n", tr.source.c_str(), tr.format.c_str(), tr.quantity.c_str());
+        std::printf("  %zu samples over %.6g s, median interval %.6g s (%.4g Hz), %zu gap(s) > 3x median (longest %.6g s), %zu stale repeat(s)\n",
+                    s.samples, s.duration_s, s.median_dt_s, s.rate_hz, s.gaps, s.longest_gap_s, s.stale_repeats);
+        const auto e = energy::integrate_interval(tr, tr.first_interval_start.value_or(tr.t.front()), tr.t.back());
+        std::printf("  whole log: %.6g J (+- %.3g J)\n", e.energy_j, e.error_j);
+        for (const auto& n : tr.notes) std::printf("  note: %s\n", n.c_str());
+        for (const auto& m : tr.markers) std::printf("  marker: %.6f %s\n", m.t, m.label.c_str());
+    });
+    auto* span = energy->add_subcommand("integrate-span", "Energy of [--start, --end] (seconds on the log's clock)");
+    add_log_options(span);
+    span->add_option("--start", a->start, "Start time (s)")->required();
+    span->add_option("--end", a->end, "End time (s)")->required();
+    span->add_flag("--hold", a->hold, "Zero-order hold instead of the trapezoid rule");
+    span->callback([a] {
+        const auto tr = energy::read_power_log(a->log, a->format, energy::parse_option_list(a->opts));
+        const auto e = energy::integrate_interval(tr, a->start, a->end, a->hold ? energy::Rule::Hold : energy::Rule::Trapezoid);
+        if (!e.covered) throw trn::Error(a->log + ": the span [" + std::to_string(a->start) + ", " + std::to_string(a->end) + "] s is not covered by the log");
+        std::printf("%.9g J +- %.3g J (%zu samples inside)\n", e.energy_j, e.error_j, e.samples);
+    });
 }
 
 }  // namespace trn::cli
