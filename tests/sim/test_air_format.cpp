@@ -1,0 +1,190 @@
+// AIR dataset writer / reader: round trip, quoting, column order, malformed rows by line number,
+// and a fuzzed reader that must either parse or throw trn::Error.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+
+#include "sim_test_maps.hpp"
+#include "trn/sim/air_format.hpp"
+
+namespace trn::sim {
+namespace {
+
+std::string temp_folder(const std::string& name) {
+    const auto p = std::filesystem::temp_directory_path() / ("trn_sim_" + name + "_" + std::to_string(::getpid()));
+    std::filesystem::remove_all(p);
+    return p.string();
+}
+
+const char* kHeader =
+    "Filename,Latitude,Longitude,RelativeAltitude,ImuX,ImuY,ImuZ,ImuW,PoseX,PoseY,PoseZ,OrientationX,OrientationY,"
+    "OrientationZ,OrientationW,MapX,MapY,SvoX,SvoY,SvoZ\n";
+const char* kRow = "a.png,47.1,8.2,200,0,0,0.1,0.99,1,2,200,0,0,0.1,0.99,10.5,20.25,1.1,2.2,200.5\n";
+
+TEST(AirFormat, WriterReaderRoundTripWithImages) {
+    const Map& map = testing::urban_map();
+    FlightConfig cfg;
+    cfg.scenario = find_scenario("UR-200");
+    cfg.frames = 4;
+    FlightSimulator sim(map, cfg);
+    const std::string dir = temp_folder("roundtrip");
+    std::vector<AirRecord> written;
+    std::vector<GrayImage> images;
+    {
+        AirWriter w(dir);
+        FlightFrame f;
+        while (sim.next(f)) {
+            written.push_back(make_air_record(f, "img " + std::to_string(f.index) + ",x.png"));  // needs quoting
+            images.push_back(f.image);
+            w.write(written.back(), f.image.view());
+        }
+        w.close();
+    }
+    AirReader r(dir);
+    AirRecord rec;
+    std::size_t i = 0;
+    while (r.next(rec)) {
+        ASSERT_LT(i, written.size());
+        const AirRecord& e = written[i];
+        EXPECT_EQ(rec.filename, e.filename);
+        EXPECT_NEAR(rec.latitude_deg, e.latitude_deg, 1e-9);
+        EXPECT_NEAR(rec.longitude_deg, e.longitude_deg, 1e-9);
+        EXPECT_NEAR(rec.map_x, e.map_x, 1e-3);
+        EXPECT_NEAR(rec.map_y, e.map_y, 1e-3);
+        EXPECT_NEAR(rec.svo_m.x, e.svo_m.x, 1e-4);
+        EXPECT_NEAR(rec.pose_m.y, e.pose_m.y, 1e-4);
+        EXPECT_NEAR(rec.orientation.z, e.orientation.z, 1e-8);
+        EXPECT_NEAR(rec.imu.w, e.imu.w, 1e-8);
+        EXPECT_NEAR(rec.relative_altitude_m, 200, 1e-9);
+        EXPECT_EQ(r.load_image(rec).pixels, images[i].pixels);  // PNG is lossless
+        ++i;
+    }
+    EXPECT_EQ(i, written.size());
+    std::filesystem::remove_all(dir);
+}
+
+TEST(AirFormat, FlightInfoRoundTrip) {
+    const std::string dir = temp_folder("info");
+    std::filesystem::create_directories(dir);
+    FlightInfo info;
+    info.scenario = "FC-300";
+    info.map_file = "map.png";
+    info.metres_per_pixel = 0.5;
+    info.origin = GeoOrigin{46.5, 7.25};
+    info.camera = {640, 480, 72};
+    info.map_year = 2008;
+    info.rendered_year = 2014;
+    write_flight_info(dir + "/flight.json", info);
+    const FlightInfo back = read_flight_info(dir + "/flight.json");
+    EXPECT_EQ(back.scenario, "FC-300");
+    EXPECT_DOUBLE_EQ(back.metres_per_pixel, 0.5);
+    ASSERT_TRUE(back.origin.has_value());
+    EXPECT_DOUBLE_EQ(back.origin->longitude_deg, 7.25);
+    EXPECT_DOUBLE_EQ(back.camera.hfov_deg, 72);
+    EXPECT_EQ(back.rendered_year, 2014);
+    EXPECT_THROW(read_flight_info(dir + "/missing.json"), Error);
+    std::filesystem::remove_all(dir);
+}
+
+TEST(AirFormat, QuaternionHeadingRoundTrip) {
+    for (double h : {0.0, 0.5, 1.5707963, 3.0, -2.0}) EXPECT_NEAR(wrap_angle(heading_from_quaternion(attitude_quaternion(h)) - h), 0, 1e-12);
+    // Heading north (0) is ENU yaw +90 degrees: a quarter turn about z.
+    const Quaternion q = attitude_quaternion(0);
+    EXPECT_NEAR(q.z, std::sqrt(0.5), 1e-12);
+    EXPECT_NEAR(q.w, std::sqrt(0.5), 1e-12);
+}
+
+TEST(AirFormat, ReaderAcceptsQuotesAnyColumnOrderExtraColumnsCrlfAndBom) {
+    std::stringstream in;
+    in << "\xEF\xBB\xBF" << "Extra,MapY,MapX,Filename,Latitude,Longitude,RelativeAltitude,ImuX,ImuY,ImuZ,ImuW,PoseX,PoseY,PoseZ,"
+       << "OrientationX,OrientationY,OrientationZ,OrientationW,SvoX,SvoY,SvoZ\r\n"
+       << "zzz,2,1,\"my \"\"odd\"\", file.png\",47,8,200,0,0,0,1,0,0,200,0,0,0,1,0,0,200\r\n"
+       << "\n"
+       << "q, 4 , 3 ,plain.png,47,8,200,0,0,0,1,0,0,200,0,0,0,1,0,0,200\n";
+    AirMetadataParser p(in, "mem.csv");
+    AirRecord r;
+    ASSERT_TRUE(p.next(r));
+    EXPECT_EQ(r.filename, "my \"odd\", file.png");
+    EXPECT_EQ(r.map_x, 1);
+    EXPECT_EQ(r.map_y, 2);
+    ASSERT_TRUE(p.next(r));
+    EXPECT_EQ(p.line(), 4);
+    EXPECT_EQ(r.filename, "plain.png");
+    EXPECT_EQ(r.map_x, 3);
+    EXPECT_FALSE(p.next(r));
+}
+
+std::string error_of(const std::string& text) {
+    std::stringstream in(text);
+    try {
+        AirMetadataParser p(in, "m.csv");
+        AirRecord r;
+        while (p.next(r)) {
+        }
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+TEST(AirFormat, MalformedRowsAreReportedByLineNumber) {
+    const std::string h = kHeader, ok = kRow;
+    EXPECT_EQ(error_of(h + ok + ok), "");
+    EXPECT_NE(error_of(h + ok + "b.png,47,8\n").find("m.csv:3: expected 20 fields"), std::string::npos);
+    EXPECT_NE(error_of(h + ok + ok + "c.png,north,8.2,200,0,0,0.1,0.99,1,2,200,0,0,0.1,0.99,10.5,20.25,1.1,2.2,200.5\n")
+                  .find("m.csv:4: Latitude 'north' is not a number"),
+              std::string::npos);
+    EXPECT_NE(error_of(h + "\"a.png,47,8\n").find("m.csv:2: unterminated quoted field"), std::string::npos);
+    EXPECT_NE(error_of(h + ",47.1,8.2,200,0,0,0.1,0.99,1,2,200,0,0,0.1,0.99,10.5,20.25,1.1,2.2,200.5\n").find("m.csv:2: Filename is empty"),
+              std::string::npos);
+    EXPECT_NE(error_of(h + "a.png,nan,8.2,200,0,0,0.1,0.99,1,2,200,0,0,0.1,0.99,10.5,20.25,1.1,2.2,200.5\n").find("not finite"),
+              std::string::npos);
+    EXPECT_NE(error_of("Filename,Latitude\n").find("m.csv:1: header lacks the column Longitude"), std::string::npos);
+    EXPECT_NE(error_of("").find("empty file"), std::string::npos);
+    EXPECT_THROW(AirReader(temp_folder("nothing_here")), Error);
+}
+
+// Random byte edits of a valid file: the parser must parse or throw trn::Error, nothing else,
+// and never read out of bounds (run under sanitizers in the fuzz build).
+TEST(AirFormat, FuzzedMetadataParsesOrThrowsTrnError) {
+    const std::string valid = std::string(kHeader) + kRow + "\"q,\"\"x\"\".png\",1,2,3,0,0,0,1,0,0,0,0,0,0,1,5,6,7,8,9\n" + kRow;
+    const std::string alphabet = ",\"\n\r .-e0123456789abcXYZ\t\xEF\xBB\xBF";
+    std::uint64_t state = 12345;
+    auto rnd = [&](std::uint64_t n) {
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        return (state >> 33) % n;
+    };
+    int parsed = 0, rejected = 0;
+    for (int iter = 0; iter < 3000; ++iter) {
+        std::string s = valid;
+        const int edits = 1 + static_cast<int>(rnd(6));
+        for (int e = 0; e < edits; ++e) {
+            const std::size_t pos = rnd(s.size() + 1);
+            switch (rnd(3)) {
+                case 0: s.insert(s.begin() + pos, alphabet[rnd(alphabet.size())]); break;
+                case 1: if (pos < s.size()) s.erase(pos, 1 + rnd(4)); break;
+                default: if (pos < s.size()) s[pos] = alphabet[rnd(alphabet.size())]; break;
+            }
+        }
+        std::stringstream in(s);
+        try {
+            AirMetadataParser p(in, "fuzz.csv");
+            AirRecord r;
+            while (p.next(r)) {
+                EXPECT_FALSE(r.filename.empty());
+                EXPECT_TRUE(std::isfinite(r.map_x));
+            }
+            ++parsed;
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find("fuzz.csv"), std::string::npos) << e.what();
+            ++rejected;
+        }
+    }
+    EXPECT_GT(parsed, 50);
+    EXPECT_GT(rejected, 50);
+}
+
+}  // namespace
+}  // namespace trn::sim
