@@ -5,6 +5,7 @@
 #endif
 #include <CL/cl.h>
 
+#include <concepts>
 #include <string>
 #include <utility>
 
@@ -13,8 +14,21 @@ namespace trn::opencl {
 // "CL_OUT_OF_RESOURCES" for -5 and so on; "unknown OpenCL error" for codes it does not know.
 const char* error_name(cl_int code);
 
-// Throws trn::Error "OpenCL <call> failed: <NAME> (<code>)" when code is not CL_SUCCESS.
-void check(cl_int code, const std::string& call);
+// Throws trn::Error "OpenCL <call> failed: <NAME> (<code>)".
+[[noreturn]] void throw_error(cl_int code, const std::string& call);
+
+// Throws (as above) when code is not CL_SUCCESS.
+inline void check(cl_int code, const char* call) {
+    if (code != CL_SUCCESS) throw_error(code, call);
+}
+inline void check(cl_int code, const std::string& call) {
+    if (code != CL_SUCCESS) throw_error(code, call);
+}
+// The call's description is only built on failure: steady-state calls must not allocate.
+template <std::invocable F>
+void check(cl_int code, F&& describe_call) {
+    if (code != CL_SUCCESS) throw_error(code, describe_call());
+}
 
 // Owns one OpenCL object and releases it with its clRelease* function.
 template <typename T, cl_int (*Release)(T)>

@@ -77,9 +77,8 @@ const char* error_name(cl_int code) {
     }
 }
 
-void check(cl_int code, const std::string& call) {
-    if (code != CL_SUCCESS)
-        throw Error("OpenCL " + call + " failed: " + error_name(code) + " (" + std::to_string(code) + ")");
+void throw_error(cl_int code, const std::string& call) {
+    throw Error("OpenCL " + call + " failed: " + error_name(code) + " (" + std::to_string(code) + ")");
 }
 
 }  // namespace trn::opencl

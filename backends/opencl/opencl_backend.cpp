@@ -6,7 +6,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
+#include <optional>
 #include <vector>
 
 #include "device_buffer.hpp"
@@ -38,7 +40,25 @@ double event_ms(cl_event e) {
     return end > start ? double(end - start) * 1e-6 : 0.0;
 }
 
+// TRN_OPENCL_WORK_GROUP=<power of two> replaces the default NCC work-group size (for tuning).
+std::optional<std::size_t> work_group_override() {
+    const char* text = std::getenv("TRN_OPENCL_WORK_GROUP");
+    if (!text || !*text) return std::nullopt;
+    char* end = nullptr;
+    const unsigned long v = std::strtoul(text, &end, 10);
+    if (*end != '\0' || v == 0 || (v & (v - 1)) != 0)
+        throw Error(std::string("TRN_OPENCL_WORK_GROUP='") + text + "': expected a power of two such as 64 or 256");
+    return std::size_t(v);
+}
+
 std::string size_text(int w, int h) { return std::to_string(w) + "x" + std::to_string(h); }
+
+// The (at most three) writes of one scoring call, kept without allocating.
+struct UploadEvents {
+    EventHandle events[3];
+    int count = 0;
+    void add(cl_event e) { events[count++].reset(e); }
+};
 
 class OpenClMap : public MapStorage {
 public:
@@ -52,7 +72,7 @@ private:
 template <typename T>
 void set_arg(cl_kernel k, cl_uint index, const T& value, const char* kernel_name) {
     check(clSetKernelArg(k, index, sizeof(T), &value),
-          std::string("clSetKernelArg(") + kernel_name + ", argument " + std::to_string(index) + ")");
+          [&] { return std::string("clSetKernelArg(") + kernel_name + ", argument " + std::to_string(index) + ")"; });
 }
 
 KernelHandle make_kernel(cl_program program, const char* name) {
@@ -67,7 +87,8 @@ public:
     OpenClBackend(const DeviceRef& device, int index) : device_(device), info_(describe_device(device, index)) {
         max_alloc_ = device_value<cl_ulong>(device.device, CL_DEVICE_MAX_MEM_ALLOC_SIZE);
         const auto max_wg = device_value<std::size_t>(device.device, CL_DEVICE_MAX_WORK_GROUP_SIZE);
-        wg_size_ = std::min(info_.type == "gpu" ? kGpuWorkGroup : kCpuWorkGroup, floor_pow2(max_wg));
+        wg_size_ = std::min(work_group_override().value_or(info_.type == "gpu" ? kGpuWorkGroup : kCpuWorkGroup),
+                            floor_pow2(max_wg));
         tile_ = std::min(kSobelTile, floor_pow2(static_cast<std::size_t>(std::max(1.0, std::sqrt(double(max_wg))))));
 
         cl_int err = CL_SUCCESS;
@@ -114,7 +135,7 @@ protected:
         cl_event e = nullptr;
         check(clEnqueueWriteBufferRect(queue_.get(), mem.get(), CL_TRUE, origin, origin, region, std::size_t(map.width), 0,
                                        std::size_t(map.stride), 0, map.data, 0, nullptr, &e),
-              "clEnqueueWriteBufferRect(" + what + ") on " + info_.name);
+              [&] { return "clEnqueueWriteBufferRect(" + what + ") on " + info_.name; });
         EventHandle upload(e);
         if (times) times->upload_ms = event_ms(upload.get());
         return std::make_shared<OpenClMap>(this, map.width, map.height, std::move(mem));
@@ -127,7 +148,7 @@ protected:
 private:
     // Uploads the plan's centred template (and sparse offsets) unless the device already holds
     // exactly these values: a particle filter scores many pose batches against one frame.
-    void upload_template(const ScoringPlan& plan, std::vector<EventHandle>& uploads);
+    void upload_template(const ScoringPlan& plan, UploadEvents& uploads);
 
     DeviceRef device_;
     DeviceInfo info_;
@@ -145,7 +166,7 @@ private:
     std::vector<float> device_centered_, device_offsets_;  // what the device buffers hold now
 };
 
-void OpenClBackend::upload_template(const ScoringPlan& plan, std::vector<EventHandle>& uploads) {
+void OpenClBackend::upload_template(const ScoringPlan& plan, UploadEvents& uploads) {
     const std::size_t count = plan.sample_count();
     if (centered_.ensure(context_.get(), count * sizeof(float), CL_MEM_READ_ONLY, max_alloc_, "centred template"))
         device_centered_.clear();
@@ -155,8 +176,8 @@ void OpenClBackend::upload_template(const ScoringPlan& plan, std::vector<EventHa
         cl_event e = nullptr;
         check(clEnqueueWriteBuffer(queue_.get(), centered_.get(), CL_FALSE, 0, count * sizeof(float), plan.centered.data(), 0,
                                    nullptr, &e),
-              "clEnqueueWriteBuffer(centred template) on " + info_.name);
-        uploads.emplace_back(e);
+              [&] { return "clEnqueueWriteBuffer(centred template) on " + info_.name; });
+        uploads.add(e);
         device_centered_.assign(plan.centered.begin(), plan.centered.end());
     }
     if (plan.dense) return;
@@ -173,8 +194,8 @@ void OpenClBackend::upload_template(const ScoringPlan& plan, std::vector<EventHa
         cl_event e = nullptr;
         check(clEnqueueWriteBuffer(queue_.get(), offsets_.get(), CL_FALSE, 0, 2 * count * sizeof(float), host_offsets_.data(),
                                    0, nullptr, &e),
-              "clEnqueueWriteBuffer(sample offsets) on " + info_.name);
-        uploads.emplace_back(e);
+              [&] { return "clEnqueueWriteBuffer(sample offsets) on " + info_.name; });
+        uploads.add(e);
         device_offsets_ = host_offsets_;
     }
 }
@@ -196,14 +217,13 @@ void OpenClBackend::do_score(const MapStorage& storage, const ScoringPlan& plan,
     affines_.ensure(context_.get(), n * kAffinePerParticle * sizeof(float), CL_MEM_READ_ONLY, max_alloc_, "pose affines");
     sums_.ensure(context_.get(), n * kSumsPerParticle * sizeof(cl_uint), CL_MEM_WRITE_ONLY, max_alloc_, "particle sums");
 
-    std::vector<EventHandle> uploads;
-    uploads.reserve(3);
+    UploadEvents uploads;
     upload_template(plan, uploads);
     cl_event e = nullptr;
     check(clEnqueueWriteBuffer(queue_.get(), affines_.get(), CL_FALSE, 0, n * kAffinePerParticle * sizeof(float),
                                host_affines_.data(), 0, nullptr, &e),
-          "clEnqueueWriteBuffer(pose affines) on " + info_.name);
-    uploads.emplace_back(e);
+          [&] { return "clEnqueueWriteBuffer(pose affines) on " + info_.name; });
+    uploads.add(e);
 
     const cl_mem map_mem = map.mem(), affines = affines_.get(), centered = centered_.get(), sums = sums_.get();
     const cl_int map_w = map.width(), map_h = map.height();
@@ -228,13 +248,13 @@ void OpenClBackend::do_score(const MapStorage& storage, const ScoringPlan& plan,
     }
     const std::size_t global = n * wg_size_, local = wg_size_;
     check(clEnqueueNDRangeKernel(queue_.get(), k, 1, nullptr, &global, &local, 0, nullptr, &e),
-          std::string("clEnqueueNDRangeKernel(") + kname + ", " + std::to_string(n) + " particles) on " + info_.name);
+          [&] { return std::string("clEnqueueNDRangeKernel(") + kname + ", " + std::to_string(n) + " particles) on " + info_.name; });
     EventHandle execute(e);
 
     host_sums_.resize(n * kSumsPerParticle);
     check(clEnqueueReadBuffer(queue_.get(), sums, CL_TRUE, 0, n * kSumsPerParticle * sizeof(cl_uint), host_sums_.data(), 0,
                               nullptr, &e),
-          "clEnqueueReadBuffer(particle sums) on " + info_.name);
+          [&] { return "clEnqueueReadBuffer(particle sums) on " + info_.name; });
     EventHandle download(e);
 
     for (std::size_t i = 0; i < n; ++i) {
@@ -248,7 +268,7 @@ void OpenClBackend::do_score(const MapStorage& storage, const ScoringPlan& plan,
         out[i] = finalize_score(sums_i, plan);
     }
     if (times) {
-        for (const EventHandle& u : uploads) times->upload_ms += event_ms(u.get());
+        for (int i = 0; i < uploads.count; ++i) times->upload_ms += event_ms(uploads.events[i].get());
         times->execute_ms = event_ms(execute.get());
         times->download_ms = event_ms(download.get());
     }
@@ -266,7 +286,7 @@ void OpenClBackend::do_sobel(GrayView src, Int16View gx, Int16View gy, PhaseTime
     const std::size_t src_region[3] = {w, h, 1};
     check(clEnqueueWriteBufferRect(queue_.get(), sobel_src_.get(), CL_FALSE, origin, origin, src_region, w, 0,
                                    std::size_t(src.stride), 0, src.data, 0, nullptr, &e),
-          "clEnqueueWriteBufferRect(Sobel source " + what + ") on " + info_.name);
+          [&] { return "clEnqueueWriteBufferRect(Sobel source " + what + ") on " + info_.name; });
     EventHandle upload(e);
 
     const cl_mem in = sobel_src_.get(), ox = sobel_gx_.get(), oy = sobel_gy_.get();
@@ -280,18 +300,18 @@ void OpenClBackend::do_sobel(GrayView src, Int16View gx, Int16View gy, PhaseTime
     const std::size_t global[2] = {(w + tile_ - 1) / tile_ * tile_, (h + tile_ - 1) / tile_ * tile_};
     const std::size_t local[2] = {tile_, tile_};
     check(clEnqueueNDRangeKernel(queue_.get(), k, 2, nullptr, global, local, 0, nullptr, &e),
-          "clEnqueueNDRangeKernel(sobel3x3, " + what + ") on " + info_.name);
+          [&] { return "clEnqueueNDRangeKernel(sobel3x3, " + what + ") on " + info_.name; });
     EventHandle execute(e);
 
     // Outputs may be ROIs of larger images: copy the WxH block row by row into their strides.
     const std::size_t out_region[3] = {w * sizeof(cl_short), h, 1};
     check(clEnqueueReadBufferRect(queue_.get(), ox, CL_FALSE, origin, origin, out_region, w * sizeof(cl_short), 0,
                                   std::size_t(gx.stride) * sizeof(cl_short), 0, gx.data, 0, nullptr, &e),
-          "clEnqueueReadBufferRect(Sobel gx " + what + ") on " + info_.name);
+          [&] { return "clEnqueueReadBufferRect(Sobel gx " + what + ") on " + info_.name; });
     EventHandle read_x(e);
     check(clEnqueueReadBufferRect(queue_.get(), oy, CL_TRUE, origin, origin, out_region, w * sizeof(cl_short), 0,
                                   std::size_t(gy.stride) * sizeof(cl_short), 0, gy.data, 0, nullptr, &e),
-          "clEnqueueReadBufferRect(Sobel gy " + what + ") on " + info_.name);
+          [&] { return "clEnqueueReadBufferRect(Sobel gy " + what + ") on " + info_.name; });
     EventHandle read_y(e);  // blocking, and the queue is in order: both reads are done
     if (times) {
         times->upload_ms = event_ms(upload.get());

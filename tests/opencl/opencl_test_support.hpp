@@ -1,0 +1,85 @@
+#pragma once
+// Shared helpers of the OpenCL backend tests.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <optional>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "cl_devices.hpp"
+#include "trn/registry.hpp"
+
+namespace trn::test {
+
+// The OpenCL devices, or a skip with the reason when this machine has none.
+#define TRN_REQUIRE_OPENCL_DEVICE()                                                                        \
+    do {                                                                                                   \
+        std::string why_;                                                                                  \
+        if (trn::opencl::enumerate_devices(why_).empty()) GTEST_SKIP() << "no OpenCL device: " << why_;  \
+    } while (0)
+
+// Sets an environment variable for the lifetime of the object, then restores it.
+class ScopedEnv {
+public:
+    ScopedEnv(std::string name, const std::optional<std::string>& value) : name_(std::move(name)) {
+        if (const char* old = std::getenv(name_.c_str())) old_ = old;
+        if (value)
+            ::setenv(name_.c_str(), value->c_str(), 1);
+        else
+            ::unsetenv(name_.c_str());
+    }
+    ~ScopedEnv() {
+        if (old_)
+            ::setenv(name_.c_str(), old_->c_str(), 1);
+        else
+            ::unsetenv(name_.c_str());
+    }
+
+private:
+    std::string name_;
+    std::optional<std::string> old_;
+};
+
+// A fresh, empty folder under the system temp folder, removed afterwards.
+class TempDir {
+public:
+    TempDir() {
+        std::random_device rd;
+        path_ = std::filesystem::temp_directory_path() / ("trn_opencl_test_" + std::to_string(rd()));
+        std::filesystem::create_directories(path_);
+    }
+    ~TempDir() {
+        std::error_code ec;
+        std::filesystem::remove_all(path_, ec);
+    }
+    const std::filesystem::path& path() const { return path_; }
+
+private:
+    std::filesystem::path path_;
+};
+
+inline std::vector<std::filesystem::path> files_with_extension(const std::filesystem::path& dir, const std::string& ext) {
+    std::vector<std::filesystem::path> out;
+    if (!std::filesystem::exists(dir)) return out;
+    for (const auto& e : std::filesystem::directory_iterator(dir))
+        if (e.path().extension() == ext) out.push_back(e.path());
+    return out;
+}
+
+// A textured u8 image (smooth blobs plus noise) so NCC has a clear optimum.
+inline std::vector<std::uint8_t> textured_image(int w, int h, unsigned seed) {
+    std::mt19937 rng(seed);
+    std::uniform_int_distribution<int> noise(-20, 20);
+    std::vector<std::uint8_t> px(std::size_t(w) * h);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const double v = 128 + 60 * std::sin(x * 0.11 + y * 0.03) * std::cos(y * 0.07 - x * 0.02) + noise(rng);
+            px[std::size_t(y) * w + x] = static_cast<std::uint8_t>(std::clamp(v, 0.0, 255.0));
+        }
+    return px;
+}
+
+}  // namespace trn::test
