@@ -33,6 +33,8 @@ struct SobelFrames {
     int count = 0;
     std::vector<std::uint8_t> src;
     std::vector<std::int16_t> gx, gy;
+    int cursor = 0;  // next frame to use: rotation continues across benchmark calls, so no frame is reused early
+    int next() { const int k = cursor; cursor = (cursor + 1) % count; return k; }
     const std::uint8_t* src_at(int i) const { return src.data() + std::size_t(i) * size.width * size.height; }
     std::int16_t* gx_at(int i) { return gx.data() + std::size_t(i) * size.width * size.height; }
     std::int16_t* gy_at(int i) { return gy.data() + std::size_t(i) * size.width * size.height; }

@@ -3,6 +3,9 @@
 //   --trn_full   the full sweep of issue 6 (default: the quick subset, see sweep.cpp)
 // Everything else is Google Benchmark's: --benchmark_filter, --benchmark_out, --benchmark_repetitions ...
 #include <benchmark/benchmark.h>
+#include <omp.h>
+
+#include <unistd.h>
 
 #include <cstdlib>
 #include <cstring>
@@ -65,7 +68,14 @@ int main(int argc, char** argv) {
         if (const char* cmd = std::getenv("TRN_BENCH_COMMAND"); cmd && *cmd) benchmark::AddCustomContext("trn_command", cmd);
         benchmark::AddCustomContext("trn_devices", devices);
         benchmark::AddCustomContext("trn_map", bench_map().source);
+        // OpenMP's wait policy decides whether the cpu backend survives a loaded machine.
+        const char* omp_threads = std::getenv("OMP_NUM_THREADS");
+        const char* omp_wait = std::getenv("OMP_WAIT_POLICY");
+        benchmark::AddCustomContext("trn_openmp", std::to_string(omp_get_max_threads()) + " threads, OMP_NUM_THREADS=" +
+                                                       (omp_threads ? omp_threads : "(unset)") + ", OMP_WAIT_POLICY=" +
+                                                       (omp_wait ? omp_wait : "(unset)"));
         benchmark::AddCustomContext("trn_cold_working_set_MiB", std::to_string(sweep.cold_bytes >> 20));
+        benchmark::AddCustomContext("trn_reported_llc_KiB", std::to_string(sysconf(_SC_LEVEL3_CACHE_SIZE) / 1024));
         benchmark::AddCustomContext("trn_opencv", std::string(CV_VERSION) + ", " + opencv_opencl_description());
         register_setup_benchmarks(sweep);  // first, so "first" is the process's first backend creation
         register_stream_benchmarks(sweep);

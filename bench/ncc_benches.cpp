@@ -43,7 +43,8 @@ void ncc_on_device(benchmark::State& state, DeviceEntry dev, FrameSize templ_siz
     const std::vector<Pose> poses = poses_around_centre(count);
     std::vector<ParticleScore> scores(poses.size());
     PhaseTimes t;
-    backend.score(map, plan, poses, scores, &t);  // first call: lazy buffers sized for this batch
+    if (first_time("ncc/" + dev.name + "/" + templ_size.text() + (sparse ? "/sparse/" : "/dense/") + std::to_string(count)))
+        backend.score(map, plan, poses, scores, &t);  // lazy buffers sized for this batch
     const bool device_clock = has_device_clock(dev.family);
     IterationLog log(state);
     for (auto _ : state) {
@@ -115,7 +116,7 @@ void ncc_peer(benchmark::State& state, Peer peer, FrameSize templ_size, int coun
             }
         }
     };
-    run_all();
+    if (first_time(std::string(peer_name(peer)) + "/" + templ_size.text())) run_all();
     IterationLog log(state);
     for (auto _ : state) {
         const auto t0 = Clock::now();

@@ -40,21 +40,19 @@ void sobel_on_device(benchmark::State& state, DeviceEntry dev, FrameSize size, W
     Backend& backend = backend_for(dev.name);
     SobelFrames& f = frames_for(size, warmth, cold_bytes);
     const int w = size.width, h = size.height;
-    auto call = [&](int i, PhaseTimes* t) {
-        const int k = i % f.count;
+    auto call = [&](int k, PhaseTimes* t) {
         backend.sobel({f.src_at(k), w, h, w}, {f.gx_at(k), w, h, w}, {f.gy_at(k), w, h, w}, t);
     };
     PhaseTimes t;
-    call(0, &t);  // first call: lazy buffers, kernel launch setup
+    if (first_time("sobel/" + dev.name + "/" + size.text())) call(f.next(), &t);  // lazy buffers, launch setup
     const bool device_clock = has_device_clock(dev.family);
     const int per_iter = frames_per_iteration(warmth);
-    int next = 1;
     IterationLog log(state);
     for (auto _ : state) {
         PhaseTimes sum;
         const auto t0 = Clock::now();
         for (int b = 0; b < per_iter; ++b) {
-            call(next++, &t);
+            call(f.next(), &t);
             sum.upload_ms += t.upload_ms, sum.execute_ms += t.execute_ms, sum.download_ms += t.download_ms;
         }
         log.add(seconds_since(t0), sum, device_clock);
@@ -72,16 +70,17 @@ void cv_sobel_pair(const cv::Mat& src, cv::Mat& gx, cv::Mat& gy) {
 void sobel_cv_mat(benchmark::State& state, FrameSize size, Warmth warmth, std::size_t cold_bytes) {
     SobelFrames& f = frames_for(size, warmth, cold_bytes);
     const int w = size.width, h = size.height;
-    auto mats = [&](int i) {
-        const int k = i % f.count;
+    auto mats = [&](int k) {
         return std::tuple{cv::Mat(h, w, CV_8UC1, const_cast<std::uint8_t*>(f.src_at(k))), cv::Mat(h, w, CV_16SC1, f.gx_at(k)),
                           cv::Mat(h, w, CV_16SC1, f.gy_at(k))};
     };
-    { auto [s, x, y] = mats(0); cv_sobel_pair(s, x, y); }
-    int next = 1;
+    if (first_time("sobel/cv_Mat/" + size.text())) {
+        auto [s, x, y] = mats(f.next());
+        cv_sobel_pair(s, x, y);
+    }
     IterationLog log(state);
     for (auto _ : state) {
-        auto [s, x, y] = mats(next++);
+        auto [s, x, y] = mats(f.next());
         const auto t0 = Clock::now();
         cv_sobel_pair(s, x, y);
         log.add(seconds_since(t0));
@@ -97,8 +96,7 @@ void sobel_cv_umat(benchmark::State& state, FrameSize size, Warmth warmth, std::
     SobelFrames& f = frames_for(size, warmth, cold_bytes);
     const int w = size.width, h = size.height;
     cv::UMat usrc, ugx, ugy;
-    auto run = [&](int i) {
-        const int k = i % f.count;
+    auto run = [&](int k) {
         cv::Mat(h, w, CV_8UC1, const_cast<std::uint8_t*>(f.src_at(k))).copyTo(usrc);
         cv::Sobel(usrc, ugx, CV_16S, 1, 0, 3, 1, 0, cv::BORDER_REFLECT_101);
         cv::Sobel(usrc, ugy, CV_16S, 0, 1, 3, 1, 0, cv::BORDER_REFLECT_101);
@@ -106,12 +104,12 @@ void sobel_cv_umat(benchmark::State& state, FrameSize size, Warmth warmth, std::
         ugx.copyTo(gx);  // blocking read: the work is finished when this returns
         ugy.copyTo(gy);
     };
-    run(0);  // builds OpenCV's OpenCL kernels
-    int next = 1;
+    run(f.next());  // builds OpenCV's OpenCL kernels (first time) and sizes this call's UMats
     IterationLog log(state);
     for (auto _ : state) {
+        const int k = f.next();
         const auto t0 = Clock::now();
-        run(next++);
+        run(k);
         log.add(seconds_since(t0));
     }
     const double px = double(w) * h;

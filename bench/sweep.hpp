@@ -22,13 +22,13 @@ struct Sweep {
     std::vector<int> ncc_counts;               // particles per call
     std::vector<FrameSize> ncc_templates;
     int ncc_reference_count = 100;             // cpu-ref and the per-particle peers run this many
+                                               // (their per-particle rate does not depend on it)
     std::size_t cold_bytes = 0;                // rotating working set for "cold" cases
 };
 
 Sweep make_sweep(bool full);
 
-// The size of the rotating working set: $TRN_BENCH_COLD_MB if set, else twice the last-level
-// cache the OS reports (at least 256 MiB, at most 2 GiB).
+// The size of the rotating working set: $TRN_BENCH_COLD_MB if set, else 256 MiB (see sweep.cpp).
 std::size_t cold_working_set_bytes();
 
 }  // namespace trn::bench

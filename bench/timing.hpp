@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <set>
 #include <string>
 
 #include "alloc_counter.hpp"
@@ -15,6 +16,14 @@ namespace trn::bench {
 
 using Clock = std::chrono::steady_clock;
 inline double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// Google Benchmark calls a benchmark function several times (iteration estimate, repetitions);
+// the untimed warm-up call is only needed the first time, and repeating it on slow cases doubles
+// the run. True once per key.
+inline bool first_time(const std::string& key) {
+    static std::set<std::string> seen;
+    return seen.insert(key).second;
+}
 
 class IterationLog {
 public:
