@@ -81,8 +81,12 @@ int main(int argc, char** argv) {
         register_stream_benchmarks(sweep);
         register_sobel_benchmarks(sweep);
         register_ncc_benchmarks(sweep);
-        benchmark::RunSpecifiedBenchmarks();
+        const std::size_t ran = benchmark::RunSpecifiedBenchmarks();
         benchmark::Shutdown();
+        if (ran == 0) {  // a filter that matches nothing is a mistake, not a successful run
+            std::cerr << "trn_bench: no benchmark matched the filter\n";
+            return 1;
+        }
     } catch (const trn::Error& e) {
         std::cerr << "trn_bench: " << e.what() << "\n";
         return 1;
