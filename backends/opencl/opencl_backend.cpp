@@ -82,6 +82,22 @@ KernelHandle make_kernel(cl_program program, const char* name) {
     return k;
 }
 
+// A compiled kernel may allow smaller work-groups than the device (registers, local memory);
+// say so at creation rather than fail every launch with CL_INVALID_WORK_GROUP_SIZE.
+void require_work_group(cl_kernel k, const char* name, std::size_t needed) {
+    std::size_t allowed = 0;
+    cl_device_id device = nullptr;
+    cl_program program = nullptr;
+    check(clGetKernelInfo(k, CL_KERNEL_PROGRAM, sizeof program, &program, nullptr), "clGetKernelInfo(CL_KERNEL_PROGRAM)");
+    check(clGetProgramInfo(program, CL_PROGRAM_DEVICES, sizeof device, &device, nullptr), "clGetProgramInfo(CL_PROGRAM_DEVICES)");
+    check(clGetKernelWorkGroupInfo(k, device, CL_KERNEL_WORK_GROUP_SIZE, sizeof allowed, &allowed, nullptr),
+          std::string("clGetKernelWorkGroupInfo(") + name + ")");
+    if (allowed < needed)
+        throw Error(std::string("OpenCL kernel ") + name + " allows work-groups of at most " + std::to_string(allowed) +
+                    " on this device but is built for " + std::to_string(needed) +
+                    "; set TRN_OPENCL_WORK_GROUP to a smaller power of two");
+}
+
 class OpenClBackend final : public Backend {
 public:
     OpenClBackend(const DeviceRef& device, int index) : device_(device), info_(describe_device(device, index)) {
@@ -111,6 +127,9 @@ public:
         dense_ = make_kernel(ncc_program_.get(), "ncc_score_dense");
         sparse_ = make_kernel(ncc_program_.get(), "ncc_score_sparse");
         sobel_ = make_kernel(sobel_program_.get(), "sobel3x3");
+        require_work_group(dense_.get(), "ncc_score_dense", wg_size_);
+        require_work_group(sparse_.get(), "ncc_score_sparse", wg_size_);
+        require_work_group(sobel_.get(), "sobel3x3", tile_ * tile_);
 
         info_.details += "; NCC work-group " + std::to_string(wg_size_) + ", Sobel tile " + std::to_string(tile_) + "x" +
                          std::to_string(tile_) + "; programs " + (warm ? "loaded from the cache" : "built from source") +
