@@ -48,7 +48,9 @@ VulkanBackend::VulkanBackend(int index)
     cache_ = std::make_unique<PipelineCache>(ctx);
     recorder_ = std::make_unique<Recorder>(ctx);
 
-    const bool subgroups = ctx.physical().subgroup_arithmetic();
+    // TRN_VULKAN_NO_SUBGROUPS=1 forces the shared-memory reduction (to test it on any device).
+    const char* no_subgroups = std::getenv("TRN_VULKAN_NO_SUBGROUPS");
+    const bool subgroups = ctx.physical().subgroup_arithmetic() && !(no_subgroups && std::strcmp(no_subgroups, "1") == 0);
     const std::span<const std::uint32_t> ncc_code =
         subgroups ? std::span<const std::uint32_t>(ncc_score_subgroup) : std::span<const std::uint32_t>(ncc_score_shared);
     // Bindings: sample table, affines, sums, map bands.

@@ -1,0 +1,159 @@
+// Vulkan backend behaviour beyond the shared conformance cases: device listing, the staging and
+// shared-memory paths (forced on lavapipe), timing, repeatability, map lifetime and options.
+#include <opencv2/imgproc.hpp>
+
+#include <cstring>
+#include <iostream>
+
+#include "vulkan_test_support.hpp"
+
+namespace trn::test {
+namespace {
+
+TEST(VulkanDevices, ListedWithNameDriverAndDetails) {
+    TRN_REQUIRE_VULKAN();
+    for (const FamilyStatus& f : default_registry().status()) {
+        if (f.family != "vulkan") continue;
+        for (std::size_t i = 0; i < f.devices.size(); ++i) {
+            const DeviceInfo& d = f.devices[i];
+            EXPECT_EQ(d.name, "vulkan:" + std::to_string(i));
+            EXPECT_EQ(d.family, "vulkan");
+            EXPECT_FALSE(d.device.empty());
+            EXPECT_NE(d.driver.find("Vulkan 1."), std::string::npos) << d.driver;
+            EXPECT_NE(d.details.find("subgroup size"), std::string::npos) << d.details;
+        }
+    }
+    auto backend = default_registry().create("vulkan");
+    std::cout << "vulkan device under test: " << backend->info().device << " (" << backend->info().driver << ")\n";
+}
+
+TEST(VulkanDevices, PickedByEnvironmentVariableAndName) {
+    TRN_REQUIRE_VULKAN();
+    const std::string first = default_registry().create("vulkan:0")->info().device;
+    {
+        ScopedEnv env("TRN_VULKAN_DEVICE", "0");
+        EXPECT_EQ(default_registry().create("vulkan")->info().device, first);
+    }
+    EXPECT_EQ(default_registry().create("vulkan:" + first.substr(0, 4))->info().device, first);
+    ScopedEnv env("TRN_VULKAN_DEVICE", "99");
+    EXPECT_THROW(default_registry().create("vulkan"), BackendUnavailable);
+}
+
+// The Vulkan backend created while environment variable `name` is `value` (which picks its path).
+std::unique_ptr<Backend> vulkan_with(const char* name, const char* value) {
+    ScopedEnv env(name, value);
+    return default_registry().create("vulkan");
+}
+
+// Dense, random and explicit sampling against cpu-ref.
+void scores_match_reference(Backend& dut) {
+    auto ref = default_registry().create("cpu-ref");
+    const PaddedGray map = textured_image(301, 207, 11, 3);
+    const PaddedGray templ = textured_image(41, 29, 12, 2);
+    const std::vector<Pose> poses = random_poses(150, map.width, map.height, 13);
+    ScoreOptions options;
+    options.min_valid_fraction = 0.5;
+    expect_scores_match(dut, *ref, map.view(), templ.view(), poses, options);
+    options.sampling = Sampling::random(0.3, 5);
+    expect_scores_match(dut, *ref, map.view(), templ.view(), poses, options);
+    options.sampling = Sampling::explicit_points({{0, 0}, {40, 28}, {20, 14}, {3, 27}, {39, 1}, {10, 10}});
+    expect_scores_match(dut, *ref, map.view(), templ.view(), poses, options);
+}
+
+TEST(VulkanPaths, StagingBuffersMatchReference) {
+    TRN_REQUIRE_VULKAN();
+    auto dut = vulkan_with("TRN_VULKAN_FORCE_STAGING", "1");
+    EXPECT_NE(dut->info().details.find("staging buffers"), std::string::npos);
+    scores_match_reference(*dut);
+}
+
+TEST(VulkanPaths, SharedMemoryReductionMatchesReference) {
+    TRN_REQUIRE_VULKAN();
+    auto dut = vulkan_with("TRN_VULKAN_NO_SUBGROUPS", "1");
+    EXPECT_NE(dut->info().details.find("shared-memory reduction"), std::string::npos);
+    scores_match_reference(*dut);
+}
+
+TEST(VulkanPaths, OtherWorkGroupSizesMatchReference) {
+    TRN_REQUIRE_VULKAN();
+    for (const char* size : {"1", "8", "128"}) {
+        SCOPED_TRACE(std::string("work-group ") + size);
+        auto dut = vulkan_with("TRN_VULKAN_WORKGROUP", size);
+        EXPECT_NE(dut->info().details.find(std::string("work-group ") + size + " "), std::string::npos) << dut->info().details;
+        scores_match_reference(*dut);
+    }
+}
+
+TEST(VulkanPaths, BadWorkGroupSizeIsAnError) {
+    TRN_REQUIRE_VULKAN();
+    ScopedEnv env("TRN_VULKAN_WORKGROUP", "48");
+    EXPECT_THROW(default_registry().create("vulkan"), Error);
+}
+
+TEST(VulkanSobel, StagingPathIsBitExactWithOpenCV) {
+    TRN_REQUIRE_VULKAN();
+    auto dut = vulkan_with("TRN_VULKAN_FORCE_STAGING", "1");
+    for (auto [w, h] : {std::pair{1, 1}, {1, 9}, {9, 1}, {2, 2}, {77, 45}}) {
+        SCOPED_TRACE(std::to_string(w) + "x" + std::to_string(h));
+        const PaddedGray src = noise_image(w, h, 21, 2);
+        std::vector<std::int16_t> gx(std::size_t(w + 3) * h), gy(std::size_t(w + 5) * h);
+        dut->sobel(src.view(), {gx.data(), w, h, w + 3}, {gy.data(), w, h, w + 5});
+        cv::Mat ex, ey;
+        cv::Sobel(src.mat(), ex, CV_16S, 1, 0, 3, 1, 0, cv::BORDER_REFLECT_101);
+        cv::Sobel(src.mat(), ey, CV_16S, 0, 1, 3, 1, 0, cv::BORDER_REFLECT_101);
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                ASSERT_EQ(gx[y * (w + 3) + x], ex.at<std::int16_t>(y, x)) << x << "," << y;
+                ASSERT_EQ(gy[y * (w + 5) + x], ey.at<std::int16_t>(y, x)) << x << "," << y;
+            }
+    }
+}
+
+TEST(VulkanTiming, PhaseTimesComeFromTheDevice) {
+    TRN_REQUIRE_VULKAN();
+    auto dut = default_registry().create("vulkan");
+    const PaddedGray map = textured_image(400, 300, 31);
+    const PaddedGray templ = textured_image(64, 48, 32);
+    const std::vector<Pose> poses = random_poses(64, map.width, map.height, 33);
+    std::vector<ParticleScore> out(poses.size());
+    PhaseTimes t;
+    dut->score(dut->upload_map(map.view()), templ.view(), poses, {}, out, &t);
+    EXPECT_GT(t.execute_ms, 0.0);
+    EXPECT_GE(t.upload_ms, 0.0);
+    EXPECT_GE(t.download_ms, 0.0);
+    std::vector<std::int16_t> gx(std::size_t(map.width) * map.height), gy(std::size_t(map.width) * map.height);
+    dut->sobel(map.view(), {gx.data(), map.width, map.height, map.width}, {gy.data(), map.width, map.height, map.width}, &t);
+    EXPECT_GT(t.execute_ms, 0.0);
+}
+
+TEST(VulkanScore, RepeatedCallsAreBitIdenticalAcrossGrowingBatches) {
+    TRN_REQUIRE_VULKAN();
+    auto dut = default_registry().create("vulkan");
+    const PaddedGray map = textured_image(250, 250, 41);
+    const PaddedGray templ = textured_image(33, 33, 42);
+    const MapHandle handle = dut->upload_map(map.view());
+    const std::vector<Pose> poses = random_poses(300, map.width, map.height, 43);
+    std::vector<ParticleScore> first(poses.size()), small(10), again(poses.size());
+    dut->score(handle, templ.view(), poses, {}, first, nullptr);
+    dut->score(handle, templ.view(), std::span(poses).first(10), {}, small, nullptr);  // smaller batch in between
+    dut->score(handle, templ.view(), poses, {}, again, nullptr);
+    for (std::size_t i = 0; i < poses.size(); ++i) {
+        EXPECT_EQ(std::memcmp(&first[i], &again[i], sizeof(ParticleScore)), 0) << i;
+        if (i < small.size()) EXPECT_EQ(std::memcmp(&first[i], &small[i], sizeof(ParticleScore)), 0) << i;
+    }
+}
+
+TEST(VulkanScore, MapOutlivesItsBackend) {
+    TRN_REQUIRE_VULKAN();
+    MapHandle handle;
+    {
+        auto dut = default_registry().create("vulkan");
+        const PaddedGray map = textured_image(64, 64, 51);
+        handle = dut->upload_map(map.view());
+    }
+    EXPECT_EQ(handle->width(), 64);
+    handle.reset();  // releases device memory of a device whose backend object is gone
+}
+
+}  // namespace
+}  // namespace trn::test

@@ -1,0 +1,74 @@
+#pragma once
+// Helpers for the Vulkan tests: the first Vulkan device (or a skip saying why there is none) and
+// score / Sobel comparisons against the cpu-ref oracle.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "test_images.hpp"
+#include "trn/registry.hpp"
+
+namespace trn::test {
+
+// Empty string when there is a Vulkan device, else why not (for GTEST_SKIP).
+inline std::string vulkan_unavailable() {
+    for (const FamilyStatus& f : default_registry().status())
+        if (f.family == "vulkan") return f.devices.empty() ? "no Vulkan device: " + f.why_none : "";
+    return "this build has no Vulkan family";
+}
+
+#define TRN_REQUIRE_VULKAN()                                                     \
+    do {                                                                         \
+        if (const std::string why = ::trn::test::vulkan_unavailable(); !why.empty()) \
+            GTEST_SKIP() << why;                                                 \
+    } while (0)
+
+// Sets an environment variable for the life of the object.
+class ScopedEnv {
+public:
+    ScopedEnv(const char* name, const char* value) : name_(name) {
+        if (const char* old = std::getenv(name)) old_ = old, had_ = true;
+        setenv(name, value, 1);
+    }
+    ~ScopedEnv() { had_ ? setenv(name_, old_.c_str(), 1) : unsetenv(name_); }
+
+private:
+    const char* name_;
+    std::string old_;
+    bool had_ = false;
+};
+
+inline std::vector<Pose> random_poses(int n, int map_w, int map_h, std::uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> x(-10.0f, map_w + 10.0f), y(-10.0f, map_h + 10.0f), yaw(-3.2f, 3.2f), s(0.7f, 1.5f);
+    std::vector<Pose> poses(n);
+    for (Pose& p : poses) p = {x(rng), y(rng), yaw(rng), s(rng)};
+    return poses;
+}
+
+// Scores on both backends; checks the conformance rules (1e-4 on scores, counts and flags exact).
+inline std::vector<ParticleScore> expect_scores_match(Backend& dut, Backend& ref, GrayView map, GrayView templ,
+                                                      const std::vector<Pose>& poses, const ScoreOptions& options) {
+    std::vector<ParticleScore> got(poses.size()), want(poses.size());
+    dut.score(dut.upload_map(map), templ, poses, options, got);
+    ref.score(ref.upload_map(map), templ, poses, options, want);
+    int valid = 0;
+    for (std::size_t i = 0; i < poses.size(); ++i) {
+        SCOPED_TRACE("pose " + std::to_string(i));
+        EXPECT_EQ(got[i].valid_samples, want[i].valid_samples);
+        EXPECT_EQ(got[i].flags, want[i].flags);
+        EXPECT_NEAR(got[i].ncc, want[i].ncc, 1e-4);
+        EXPECT_NEAR(got[i].cc, want[i].cc, 1e-4);
+        EXPECT_NEAR(got[i].ssd, want[i].ssd, 1e-4);
+        valid += want[i].valid();
+    }
+    EXPECT_GT(valid, 0) << "the case should have valid particles";
+    return got;
+}
+
+}  // namespace trn::test
