@@ -17,26 +17,51 @@ using detail::hash;
 using detail::unit;
 constexpr double kPi = 3.14159265358979323846;
 
-// Smooth value noise on a hashed lattice with cell `cell_m` metres; values in [0, 1).
+// Smooth value noise on a hashed lattice with cell `cell_m` metres; values in [0, 1). The lattice
+// over the region being generated is tabulated once, so a lookup is four loads, not four hashes.
 class ValueNoise {
 public:
     ValueNoise(std::uint64_t seed, double cell_m) : seed_(seed), inv_cell_(1.0 / cell_m) {}
+
+    void tabulate(double x0, double y0, double x1, double y1) {
+        ix0_ = static_cast<std::int64_t>(std::floor(x0 * inv_cell_)) - 1;
+        iy0_ = static_cast<std::int64_t>(std::floor(y0 * inv_cell_)) - 1;
+        nx_ = static_cast<std::int64_t>(std::floor(x1 * inv_cell_)) + 3 - ix0_;
+        ny_ = static_cast<std::int64_t>(std::floor(y1 * inv_cell_)) + 3 - iy0_;
+        table_.resize(static_cast<std::size_t>(nx_ * ny_));
+        for (std::int64_t j = 0; j < ny_; ++j)
+            for (std::int64_t i = 0; i < nx_; ++i) table_[j * nx_ + i] = static_cast<float>(lattice(ix0_ + i, iy0_ + j));
+    }
+
     double at(double x, double y) const {
         const double gx = x * inv_cell_, gy = y * inv_cell_;
         const double fx0 = std::floor(gx), fy0 = std::floor(gy);
         const auto ix = static_cast<std::int64_t>(fx0), iy = static_cast<std::int64_t>(fy0);
         double fx = gx - fx0, fy = gy - fy0;
         fx = fx * fx * (3 - 2 * fx), fy = fy * fy * (3 - 2 * fy);
-        const double a = unit(hash(seed_, ix, iy)), b = unit(hash(seed_, ix + 1, iy));
-        const double c = unit(hash(seed_, ix, iy + 1)), d = unit(hash(seed_, ix + 1, iy + 1));
+        double a, b, c, d;
+        const std::int64_t ti = ix - ix0_, tj = iy - iy0_;
+        if (ti >= 0 && tj >= 0 && ti + 1 < nx_ && tj + 1 < ny_) {
+            const float* p = table_.data() + tj * nx_ + ti;
+            a = p[0], b = p[1], c = p[nx_], d = p[nx_ + 1];
+        } else {
+            a = lattice(ix, iy), b = lattice(ix + 1, iy), c = lattice(ix, iy + 1), d = lattice(ix + 1, iy + 1);
+        }
         const double top = a + fx * (b - a), bot = c + fx * (d - c);
         return top + fy * (bot - top);
     }
 
 private:
+    // Rounded to float like the table, so tabulated and direct lookups agree bit for bit.
+    double lattice(std::int64_t i, std::int64_t j) const { return static_cast<float>(unit(hash(seed_, i, j))); }
     std::uint64_t seed_;
     double inv_cell_;
+    std::int64_t ix0_ = 0, iy0_ = 0, nx_ = 0, ny_ = 0;
+    std::vector<float> table_;
 };
+
+// The k-th of four 16-bit uniforms packed in one hash (cheaper than a hash per number).
+inline double slice(std::uint64_t h, int k) { return static_cast<double>((h >> (16 * k)) & 0xFFFF) * (1.0 / 65536.0); }
 
 enum class Land { Forest, Field, Meadow, Houses, Industrial, Park };
 
@@ -66,7 +91,8 @@ bool in_cast_shadow(const Rect& r, double x, double y, double dx, double dy, dou
 
 class Scene {
 public:
-    explicit Scene(const ProceduralMapOptions& o)
+    // Generates positions within [x0, x1] x [y0, y1] metres (others work, just slower).
+    Scene(const ProceduralMapOptions& o, double x0, double y0, double x1, double y1)
         : o_(o),
           urban_(o.style == TerrainStyle::Urban),
           seed_(detail::mix64(o.seed * 2 + (urban_ ? 1 : 0))),
@@ -74,8 +100,12 @@ public:
           lakes_(hash(seed_, 3), urban_ ? 500 : 700), lakes_fine_(hash(seed_, 4), 120),
           mottle_(hash(seed_, 5), 14), grain_(hash(seed_, 6), 3.5), stands_(hash(seed_, 7), 60),
           river_wobble_(hash(seed_, 8), 300) {
+        for (ValueNoise* n : {&warp_x_, &warp_y_, &lakes_, &lakes_fine_, &mottle_, &grain_, &stands_})
+            n->tabulate(x0 - 10, y0 - 10, x1 + 10, y1 + 10);
+        // mottle_ is also read at a third of the position (water) and grain_ at double (soil).
         make_lines(xs_, o.width_m, 11);
         make_lines(ys_, o.height_m, 12);
+        tabulate_blocks();
         // The year sets the season and the sun; it never moves roads, blocks or rivers.
         const std::uint64_t y = hash(seed_, 20, o.year);
         const double shadow_azimuth = kPi * (0.55 + 0.9 * unit(y, 0));  // shadows fall north-ish
@@ -108,22 +138,42 @@ private:
             p += lo + (hi - lo) * unit(hash(seed_, salt, i));
         }
     }
+    // Per-block facts, tabulated once: looked up for every pixel.
+    void tabulate_blocks() {
+        const int nx = static_cast<int>(xs_.size()), ny = static_cast<int>(ys_.size());
+        v_road_.resize(std::size_t(nx) * ny), h_road_.resize(std::size_t(nx) * ny);
+        v_hedge_.resize(std::size_t(nx) * ny), h_hedge_.resize(std::size_t(nx) * ny), land_.resize(std::size_t(nx) * ny);
+        for (int i = 0; i < nx; ++i)
+            for (int j = 0; j < ny; ++j) {
+                const std::size_t k = std::size_t(i) * ny + j;
+                v_road_[k] = road_width_hashed(true, i, j);   // vertical line i, segment j
+                h_road_[k] = road_width_hashed(false, j, i);  // horizontal line j, segment i
+                v_hedge_[k] = hedge_hashed(true, i, j);
+                h_hedge_[k] = hedge_hashed(false, j, i);
+                land_[k] = land_hashed(i, j);
+            }
+    }
+    std::size_t cell(int i, int j) const { return std::size_t(i) * ys_.size() + j; }
+    double road_width(bool vertical, int line, int seg) const { return vertical ? v_road_[cell(line, seg)] : h_road_[cell(seg, line)]; }
+    bool hedge(bool vertical, int line, int seg) const { return vertical ? v_hedge_[cell(line, seg)] : h_hedge_[cell(seg, line)]; }
+    Land land(int bi, int bj) const { return land_[cell(bi, bj)]; }
+
     static int find(const std::vector<double>& lines, double p) {
         const auto it = std::upper_bound(lines.begin(), lines.end(), p);
         return std::clamp(static_cast<int>(it - lines.begin()) - 1, 0, static_cast<int>(lines.size()) - 2);
     }
 
     // Road width (metres) on segment `seg` of boundary line `line` (vertical when `vertical`); 0: none.
-    double road_width(bool vertical, int line, int seg) const {
+    double road_width_hashed(bool vertical, int line, int seg) const {
         const std::uint64_t h = hash(seed_, vertical ? 40 : 41, line, seg);
         const bool main_road = unit(hash(seed_, vertical ? 42 : 43, line)) < (urban_ ? 0.25 : 0.3);
         if (urban_) return main_road ? 14 : 8;
         if (main_road) return 8;
         return unit(h) < 0.3 ? 4.5 : 0.0;  // farm tracks on some field edges
     }
-    bool hedge(bool vertical, int line, int seg) const { return !urban_ && unit(hash(seed_, vertical ? 44 : 45, line, seg)) < 0.35; }
+    bool hedge_hashed(bool vertical, int line, int seg) const { return !urban_ && unit(hash(seed_, vertical ? 44 : 45, line, seg)) < 0.35; }
 
-    Land land(int bi, int bj) const {
+    Land land_hashed(int bi, int bj) const {
         const double u = unit(hash(seed_, 50, bi, bj));
         if (urban_) {
             if (u < 0.58) return Land::Houses;
@@ -205,18 +255,19 @@ private:
             for (std::int64_t i = cx - 1; i <= cx + 1; ++i) {
                 const std::uint64_t h = hash(seed_, 60, i, j);
                 if (unit(h) >= density) continue;
-                const double px = (i + 0.15 + 0.7 * unit(h, 1)) * cell, py = (j + 0.15 + 0.7 * unit(h, 2)) * cell;
-                const double r = cell * (0.45 + 0.3 * unit(h, 3));
+                const std::uint64_t g = detail::mix64(h);
+                const double px = (i + 0.15 + 0.7 * slice(g, 0)) * cell, py = (j + 0.15 + 0.7 * slice(g, 1)) * cell;
+                const double r = cell * (0.45 + 0.3 * slice(g, 2));
                 const double dx = x - px, dy = y - py, d2 = dx * dx + dy * dy;
                 if (d2 >= r * r) continue;
                 const double z = std::sqrt(r * r - d2);
-                const double top = z + 2 * unit(h, 4);
+                const double top = z + 2 * slice(g, 3);
                 if (top <= best) continue;
                 best = top;
                 // Light comes from opposite the shadow direction.
                 const double cos_e = std::cos(sun_elevation_), sin_e = std::sin(sun_elevation_);
                 const double light = (-dx * sun_dx_ * cos_e - dy * sun_dy_ * cos_e + z * sin_e) / r;
-                value = base * (0.5 + 0.75 * std::max(0.0, light)) + 25 * (unit(h, 5) - 0.5);
+                value = base * (0.5 + 0.75 * std::max(0.0, light)) + 25 * (slice(h, 0) - 0.5);
             }
         return value;
     }
@@ -285,17 +336,17 @@ private:
         const std::uint64_t hb = hash(seed_, 90, bi, bj);
         const double lot = 14 + 10 * unit(hb);
         if (k < 0 || (k + 1) * lot > extent) return false;
-        const std::uint64_t h = hash(seed_, 91, bi * 64 + row, bj, k);
-        const int built = unit(h) < 0.85 ? 1900 : 2000 + static_cast<int>(21 * unit(h, 1));
-        const int demolished = unit(h, 2) < 0.04 ? 2005 + static_cast<int>(16 * unit(h, 3)) : 9999;
-        if (o_.year < built || o_.year >= demolished || unit(h, 8) < (urban_ ? 0.05 : 0.2)) return false;
-        const double w = std::min(lot - 3, 8 + 6 * unit(h, 4)), d = std::min(depth - 8, 8 + 5 * unit(h, 5));
+        const std::uint64_t h = hash(seed_, 91, bi * 64 + row, bj, k), g = detail::mix64(h);
+        const int built = slice(h, 0) < 0.85 ? 1900 : 2000 + static_cast<int>(21 * slice(h, 1));
+        const int demolished = slice(h, 2) < 0.04 ? 2005 + static_cast<int>(16 * slice(h, 3)) : 9999;
+        if (o_.year < built || o_.year >= demolished || slice(g, 0) < (urban_ ? 0.05 : 0.2)) return false;
+        const double w = std::min(lot - 3, 8 + 6 * slice(g, 1)), d = std::min(depth - 8, 8 + 5 * slice(g, 2));
         if (w < 4 || d < 4) return false;
-        const double set_back = 4 + 3 * unit(h, 6);
+        const double set_back = 4 + 3 * slice(g, 3);
         const double a0 = k * lot + (lot - w) / 2, a1 = a0 + w;
         const double b0 = row * depth + (row % 2 == 0 ? set_back : depth - set_back - d), b1 = b0 + d;
         r = along_x ? Rect{a0, b0, a1, b1} : Rect{b0, a0, b1, a1};
-        roof = 70 + 120 * unit(h, 7);
+        roof = 70 + 120 * unit(detail::mix64(g));
         return true;
     }
 
@@ -351,6 +402,9 @@ private:
     std::uint64_t seed_;
     ValueNoise warp_x_, warp_y_, lakes_, lakes_fine_, mottle_, grain_, stands_, river_wobble_;
     std::vector<double> xs_, ys_;
+    std::vector<double> v_road_, h_road_;
+    std::vector<char> v_hedge_, h_hedge_;
+    std::vector<Land> land_;
     double sun_dx_ = 0, sun_dy_ = -1, sun_elevation_ = 0.8, shadow_per_metre_ = 1;
     double gain_ = 1, offset_ = 0, vegetation_gain_ = 1;
     double river_y_ = 0, river_phase_ = 0;
@@ -383,9 +437,9 @@ void ProceduralMapOptions::validate() const {
 GrayImage generate_procedural_region(const ProceduralMapOptions& options, int x0, int y0, int w, int h) {
     options.validate();
     if (w <= 0 || h <= 0) throw Error("procedural region: size " + std::to_string(w) + "x" + std::to_string(h) + " is empty");
-    const Scene scene(options);
-    GrayImage img{w, h, std::vector<std::uint8_t>(std::size_t(w) * h)};
     const double mpp = options.metres_per_pixel;
+    const Scene scene(options, x0 * mpp, y0 * mpp, (x0 + w) * mpp, (y0 + h) * mpp);
+    GrayImage img{w, h, std::vector<std::uint8_t>(std::size_t(w) * h)};
 #pragma omp parallel for schedule(dynamic, 8)
     for (int j = 0; j < h; ++j) {
         std::uint8_t* row = img.pixels.data() + std::size_t(j) * w;

@@ -12,6 +12,19 @@
 using namespace trn::sim;
 
 int main(int argc, char** argv) {
+    if (argc > 2 && std::string(argv[1]) == "--time") {  // trn_sim_samples --time EDGE_M: generation speed
+        for (TerrainStyle style : {TerrainStyle::Forest, TerrainStyle::Urban}) {
+            ProceduralMapOptions o;
+            o.style = style;
+            o.width_m = o.height_m = std::stod(argv[2]);
+            const auto t0 = std::chrono::steady_clock::now();
+            const Map map = generate_procedural_map(o);
+            const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+            std::printf("%s %dx%d px: %.2f s (%.1f Mpx/s)\n", to_string(style), map.image.width, map.image.height, s,
+                        map.image.width * double(map.image.height) / 1e6 / s);
+        }
+        return 0;
+    }
     const std::string out = argc > 1 ? argv[1] : ".";
     std::filesystem::create_directories(out);
     for (TerrainStyle style : {TerrainStyle::Forest, TerrainStyle::Urban}) {

@@ -15,7 +15,7 @@ inline ProceduralMapOptions small_map_options(TerrainStyle style, int year = 200
     o.style = style;
     o.seed = 11;
     o.year = year;
-    o.width_m = o.height_m = 900;
+    o.width_m = o.height_m = 640;
     return o;
 }
 

@@ -47,7 +47,7 @@ TEST(RenderScore, FrameScoresHighAtTruthWithClearPeakUrban) {
     const Map& map = testing::urban_map();
     const Camera cam;
     for (double yaw : {0.0, 0.7, -2.2}) {
-        const CameraPose pose{450, 430, 200, yaw, 0, 0};
+        const CameraPose pose{320, 300, 200, yaw, 0, 0};
         const GrayImage frame = render_frame(map, cam, pose);
         const PeakResult r = score_peak(map, frame, cam, pose, 30);
         EXPECT_GT(r.truth, 0.9) << "yaw " << yaw;
@@ -58,7 +58,7 @@ TEST(RenderScore, FrameScoresHighAtTruthWithClearPeakUrban) {
 TEST(RenderScore, FrameScoresHighAtTruthForest300m) {
     const Map& map = testing::forest_map();
     const Camera cam;
-    const CameraPose pose{460, 440, 300, 1.3, 0, 0};
+    const CameraPose pose{320, 330, 300, 1.3, 0, 0};
     const GrayImage frame = render_frame(map, cam, pose);
     const PeakResult r = score_peak(map, frame, cam, pose, 30);
     EXPECT_GT(r.truth, 0.9);
@@ -89,7 +89,7 @@ TEST(RenderScore, AgedProceduralMapStillCorrelatesAtTruth) {
     EXPECT_GT(differing, base.image.pixels.size() / 20);
     // ... but a frame of 2014 still finds its place on the 2008 map.
     const Camera cam;
-    const CameraPose pose{450, 430, 200, 0.3, 0, 0};
+    const CameraPose pose{320, 300, 200, 0.3, 0, 0};
     const GrayImage frame = render_frame(aged, cam, pose);
     const PeakResult r = score_peak(base, frame, cam, pose, 30);
     EXPECT_GT(r.truth, 0.5);
@@ -104,7 +104,7 @@ TEST(RenderScore, ImageAgedMapStillCorrelatesAtTruth) {
     const Map aged = age_map(base, ageing);
     ASSERT_EQ(aged.image.width, base.image.width);
     const Camera cam;
-    const CameraPose pose{450, 450, 200, -0.5, 0, 0};
+    const CameraPose pose{300, 320, 200, -0.5, 0, 0};
     const GrayImage frame = render_frame(aged, cam, pose);
     const PeakResult same = score_peak(aged, frame, cam, pose, 30);
     const PeakResult cross = score_peak(base, frame, cam, pose, 30);
