@@ -2,11 +2,14 @@
 // branch-free so the compiler vectorizes them; sums are float within a template row and double
 // across rows, which keeps NCC within 1e-6 of the double reference on 640x480 templates.
 #include "cpu_backend.hpp"
+#include "ncc_rows.hpp"
 
 #include <omp.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
+#include <string>
 #include <cmath>
 #include <thread>
 #include <vector>
@@ -19,62 +22,17 @@ double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std
 
 class CpuMap : public MapStorage {
 public:
+    // Rows are packed (stride == width) with kPad spare bytes at the end, so the AVX2 path may read
+    // a 4-byte word starting at any pixel.
+    static constexpr std::size_t kPad = 16;
     CpuMap(const Backend* owner, GrayView v)
-        : MapStorage(owner, v.width, v.height), stride(v.width), pixels(std::size_t(v.width) * v.height) {
+        : MapStorage(owner, v.width, v.height), stride(v.width), pixels(std::size_t(v.width) * v.height + kPad, 0) {
         for (int y = 0; y < v.height; ++y) std::copy_n(v.row(y), v.width, pixels.data() + std::size_t(y) * v.width);
     }
+    cpu::MapPixels view() const { return {pixels.data(), stride, width(), height()}; }
     std::ptrdiff_t stride;
     std::vector<std::uint8_t> pixels;
 };
-
-// Row of samples: du/dv offsets from the template centre and centred template values.
-struct SampleRow {
-    const float* du;
-    float dv;           // dense: one dv for the whole row
-    const float* dvs;   // sparse: one dv per sample (nullptr for dense)
-    const float* t;
-    int count;
-};
-
-struct RowSums {
-    float n = 0, sj = 0, sjj = 0, sjt = 0, st = 0, stt = 0;
-};
-
-// Samples one row. Checked = false when the whole patch is known to lie inside the map.
-template <bool Checked>
-RowSums sample_row(const CpuMap& m, const Affine& A, const SampleRow& row, float shift) {
-    const float xmax = float(m.width() - 1), ymax = float(m.height() - 1);
-    const int x0max = m.width() - 2, y0max = m.height() - 2;
-    const std::uint8_t* px8 = m.pixels.data();
-    const std::ptrdiff_t stride = m.stride;
-    RowSums r;
-    for (int k = 0; k < row.count; ++k) {
-        const float dv = row.dvs ? row.dvs[k] : row.dv;
-        // Same operation order as scoring.hpp: (t + a*du) + b*dv, no FMA (-ffp-contract=off).
-        float px = (A.tx + A.a * row.du[k]) + A.b * dv;
-        float py = (A.ty + A.c * row.du[k]) + A.d * dv;
-        float valid = 1.0f;
-        if constexpr (Checked) {
-            valid = (px >= 0.0f && py >= 0.0f && px <= xmax && py <= ymax) ? 1.0f : 0.0f;
-            px = std::clamp(px, 0.0f, xmax);
-            py = std::clamp(py, 0.0f, ymax);
-        }
-        const int x0 = std::min(int(px), x0max), y0 = std::min(int(py), y0max);  // px >= 0: int() == floor
-        const float fx = px - float(x0), fy = py - float(y0);
-        const std::uint8_t* p = px8 + y0 * stride + x0;
-        const float m00 = p[0], m10 = p[1], m01 = p[stride], m11 = p[stride + 1];
-        const float top = m00 + fx * (m10 - m00), bot = m01 + fx * (m11 - m01);
-        const float j = (top + fy * (bot - top)) - shift;
-        const float t = row.t[k];
-        r.n += valid;
-        r.sj += valid * j;
-        r.sjj += valid * j * j;
-        r.sjt += valid * j * t;
-        r.st += valid * t;
-        r.stt += valid * t * t;
-    }
-    return r;
-}
 
 float centre_value(const CpuMap& m, float x, float y) {
     x = std::clamp(x, 0.0f, float(m.width() - 1));
@@ -99,13 +57,28 @@ bool patch_inside(const CpuMap& m, const Affine& A, const ScoringPlan& plan) {
     return true;
 }
 
+// Per-thread scratch that only grows, so steady-state calls allocate nothing.
+struct Scratch {
+    std::vector<float> ax, ay, bdv, ddv;
+    void reserve(std::size_t n) {
+        for (auto* v : {&ax, &ay, &bdv, &ddv})
+            if (v->size() < n) v->resize(n);
+    }
+};
+
+// AVX2 when the processor has it, unless TRN_CPU_SIMD=off (to test and compare the portable path).
+bool simd_enabled() {
+    const char* env = std::getenv("TRN_CPU_SIMD");
+    return cpu::avx2_available() && !(env && std::string(env) == "off");
+}
+
 class CpuBackend final : public Backend {
 public:
     CpuBackend() {
         const int threads = omp_get_max_threads();
         info_ = {"cpu", "cpu", "optimized C++ (OpenMP)", "cpu", "trnkit",
                  std::to_string(threads) + " threads, " + std::to_string(std::thread::hardware_concurrency()) +
-                     " hardware threads"};
+                     " hardware threads, dense rows " + (use_avx2_ ? "AVX2" : "portable") + " (TRN_CPU_SIMD=off forces portable)"};
     }
     const DeviceInfo& info() const override { return info_; }
 
@@ -148,28 +121,49 @@ private:
     }
 
     ParticleScore score_one(const CpuMap& map, const ScoringPlan& plan, const Pose& pose) const {
+        static thread_local Scratch scratch;
         const Affine A = pose_to_affine(pose);
         ParticleSums sums;
         sums.shift = centre_value(map, pose.x, pose.y);
         const float shift = static_cast<float>(sums.shift);
+        const cpu::MapPixels pixels = map.view();
         const bool inside = patch_inside(map, A, plan);
-        auto add = [&](const SampleRow& row) {
-            const RowSums r = inside ? sample_row<false>(map, A, row, shift) : sample_row<true>(map, A, row, shift);
+        const bool vector = inside && use_avx2_ && plan.dense && std::int64_t(map.stride) * map.height() < (std::int64_t(1) << 31);
+        auto add = [&](const cpu::RowInput& row) {
+            const cpu::RowSums r = vector   ? cpu::sample_row_inside_avx2(pixels, row, shift)
+                                   : inside ? cpu::sample_row_inside(pixels, row, shift)
+                                            : cpu::sample_row_checked(pixels, row, shift);
             sums.n += r.n, sums.sj += r.sj, sums.sjj += r.sjj, sums.sjt += r.sjt, sums.st += r.st, sums.stt += r.stt;
         };
+        const std::size_t count = du_.size();
+        scratch.reserve(count);
+        // The row-invariant half of every position: tx + a*du and ty + c*du.
+        for (std::size_t k = 0; k < count; ++k) {
+            scratch.ax[k] = A.tx + A.a * du_[k];
+            scratch.ay[k] = A.ty + A.c * du_[k];
+        }
         if (plan.dense) {
-            for (int v = 0; v < plan.height; ++v)
-                add({du_.data(), float(v) - plan.cy, nullptr, plan.centered.data() + std::size_t(v) * plan.width, plan.width});
+            for (int v = 0; v < plan.height; ++v) {
+                const float dv = float(v) - plan.cy;
+                add({scratch.ax.data(), scratch.ay.data(), A.b * dv, A.d * dv, nullptr, nullptr,
+                     plan.centered.data() + std::size_t(v) * plan.width, plan.width});
+            }
         } else {
+            for (std::size_t k = 0; k < count; ++k) {
+                scratch.bdv[k] = A.b * dv_[k];
+                scratch.ddv[k] = A.d * dv_[k];
+            }
             constexpr int kChunk = 512;  // float sums over short runs, double across them
-            const int total = static_cast<int>(plan.points.size());
+            const int total = static_cast<int>(count);
             for (int k = 0; k < total; k += kChunk)
-                add({du_.data() + k, 0.0f, dv_.data() + k, plan.centered.data() + k, std::min(kChunk, total - k)});
+                add({scratch.ax.data() + k, scratch.ay.data() + k, 0, 0, scratch.bdv.data() + k, scratch.ddv.data() + k,
+                     plan.centered.data() + k, std::min(kChunk, total - k)});
         }
         return finalize_score(sums, plan);
     }
 
     DeviceInfo info_;
+    bool use_avx2_ = simd_enabled();
     std::vector<float> du_, dv_;
 };
 

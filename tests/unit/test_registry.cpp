@@ -12,8 +12,11 @@ TEST(Registry, ListsCpuFamiliesAndEveryOtherFamilyByName) {
     std::vector<std::string> families;
     for (const auto& s : status) families.push_back(s.family);
     EXPECT_EQ(families, (std::vector<std::string>{"cpu-ref", "cpu", "opencl", "vulkan"}));
-    for (const auto& s : status)
-        if (s.devices.empty()) EXPECT_FALSE(s.why_none.empty()) << s.family << " has no devices and no reason";
+    for (const auto& s : status) {
+        if (s.devices.empty()) {
+            EXPECT_FALSE(s.why_none.empty()) << s.family << " has no devices and no reason";
+        }
+    }
     const auto names = default_registry().available();
     EXPECT_NE(std::find(names.begin(), names.end(), "cpu-ref"), names.end());
     EXPECT_NE(std::find(names.begin(), names.end(), "cpu"), names.end());

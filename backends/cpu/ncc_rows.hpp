@@ -1,0 +1,40 @@
+#pragma once
+// Inner loops of the cpu backend's scoring: one template row (or chunk of sparse samples) of one
+// particle. Positions follow scoring.hpp exactly: px = ax[k] + bdv with ax[k] = tx + a*du[k]
+// precomputed per particle, so each product and sum is rounded as the contract says.
+#include <cstddef>
+#include <cstdint>
+
+namespace trn::cpu {
+
+struct RowSums {
+    float n = 0, sj = 0, sjj = 0, sjt = 0, st = 0, stt = 0;
+};
+
+struct MapPixels {
+    const std::uint8_t* data;  // padded by >= 4 bytes past the last pixel (see CpuMap)
+    std::ptrdiff_t stride;
+    int width, height;
+};
+
+// One row of samples. Dense rows share one (bdv, ddv); sparse chunks give one per sample.
+struct RowInput {
+    const float* ax;    // tx + a*du per sample
+    const float* ay;    // ty + c*du per sample
+    float bdv, ddv;     // b*dv and d*dv for a dense row
+    const float* bdvs;  // per-sample b*dv (sparse), or nullptr
+    const float* ddvs;
+    const float* t;     // centred template values
+    int count;
+};
+
+// Checked = samples may fall outside the map (masked out); unchecked = all known inside.
+RowSums sample_row_checked(const MapPixels& m, const RowInput& row, float shift);
+RowSums sample_row_inside(const MapPixels& m, const RowInput& row, float shift);
+
+// AVX2 version of sample_row_inside for dense rows (bit-identical sample values; sums in 8 lanes).
+// Only call when avx2_available() and the map has fewer than 2^31 pixels.
+RowSums sample_row_inside_avx2(const MapPixels& m, const RowInput& row, float shift);
+bool avx2_available();
+
+}  // namespace trn::cpu
