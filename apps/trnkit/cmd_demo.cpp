@@ -1,99 +1,127 @@
-// `trnkit demo`: what `./run demo` runs. Until the localization pipeline lands it is a quick
-// cross-backend run on built-in data: a synthetic textured map (or the real orthophoto when
-// --map is given), one template cut from it at a known pose, N particles scored on every available
-// backend, and a 1080p Sobel; it prints one table and checks every backend agrees with cpu-ref.
-#include <algorithm>
+// `trnkit demo`: what `./run demo` runs. Simulates a ~2 km flight over the built-in procedural map,
+// rendered from the world two years after the localization map was taken, localizes it with the
+// DPC-PFL particle filter on the fastest available backend, and prints the summary and the paths
+// of the summary JSON and the plots. (The cross-backend scoring table is `trnkit check`.)
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
-#include <numbers>
-#include <random>
 
 #include "commands.hpp"
-#include "trn/io/image_io.hpp"
+#include "trn/error.hpp"
+#include "trn/filter/backend_choice.hpp"
+#include "trn/filter/flight_source.hpp"
+#include "trn/filter/localization.hpp"
+#include "trn/filter/report.hpp"
 #include "trn/registry.hpp"
+#include "trn/sim/procedural_map.hpp"
 
 namespace trn::cli {
 namespace {
 
-// A deterministic textured map: sums of sines at several scales plus hashed noise.
-GrayImage builtin_map(int w, int h) {
-    GrayImage img{w, h, std::vector<std::uint8_t>(std::size_t(w) * h)};
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            const double v = 128 + 40 * std::sin(x * 0.031 + 0.7 * std::sin(y * 0.017)) + 30 * std::sin(y * 0.047 + x * 0.011) +
-                             20 * std::sin((x + y) * 0.13) + double((x * 73856093u ^ y * 19349663u) % 29) - 14;
-            img.pixels[std::size_t(y) * w + x] = static_cast<std::uint8_t>(std::clamp(v, 0.0, 255.0));
-        }
-    return img;
+struct DemoArgs {
+    std::string scenario = "FR-200", backend = "fastest", out;
+    double distance_km = 2.0, rate_hz = 5;
+    int map_year = 2008, flight_year = 2010;
+    std::uint64_t seed = 1;
+    bool no_plots = false;
+};
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void progress_bar(std::size_t done, std::size_t total) {
+    if (total && done < total && (100 * done / total) == (100 * (done - 1) / total)) return;  // redraw per percent
+    const int width = 40, filled = total ? static_cast<int>(width * std::min(done, total) / total) : 0;
+    std::fprintf(stderr, "\r[%s%s] %zu/%zu steps", std::string(filled, '#').c_str(), std::string(width - filled, ' ').c_str(), done, total);
+    if (done >= total) std::fputc('\n', stderr);
+}
+
+void demo(const DemoArgs& a) {
+    namespace fs = std::filesystem;
+    const auto t0 = std::chrono::steady_clock::now();
+    const sim::Scenario& preset = sim::find_scenario(a.scenario);
+    if (!(a.distance_km > 0)) throw Error("--distance-km must be > 0");
+
+    // The localization map (a.map_year) and the world the camera sees (a.flight_year), same place.
+    sim::ProceduralMapOptions mo;
+    mo.style = preset.terrain;
+    mo.seed = a.seed;
+    mo.year = a.map_year;
+    const double footprint = preset.altitude_m / sim::Camera{}.focal_px() * 400 * 2;
+    mo.width_m = mo.height_m = std::ceil((preset.nominal_size_m * 1.1 + footprint + 100) / 100) * 100;
+    std::cerr << "generating the " << sim::to_string(mo.style) << " map (" << mo.width_m << " m square, " << a.map_year
+              << ") and the world " << a.flight_year - a.map_year << " years later\n";
+    const sim::Map map = sim::generate_procedural_map(mo);
+    mo.year = a.flight_year;
+    const sim::Map world = sim::generate_procedural_map(mo);
+    const double maps_s = seconds_since(t0);
+
+    std::vector<filter::BackendTiming> timings;
+    std::unique_ptr<Backend> backend;
+    if (a.backend == "fastest") {
+        backend = filter::create_fastest_backend(&timings);
+    } else {
+        backend = default_registry().create(a.backend);
+    }
+    std::cerr << "scoring on " << backend->info().name << " (" << backend->info().device << ")";
+    if (!timings.empty()) {
+        std::cerr << "; 1000-particle batch:";
+        for (const auto& t : timings) std::cerr << " " << t.name << " " << t.score_ms << " ms";
+    }
+    std::cerr << "\n";
+
+    sim::FlightConfig fc;
+    fc.scenario = preset;
+    fc.seed = a.seed;
+    fc.frames = static_cast<std::size_t>(std::llround(a.distance_km * 1000 / preset.speed_mps * preset.fps));
+    const std::size_t stride = std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(preset.fps / a.rate_hz)));
+    filter::SimulatedFlightSource source(world, fc, stride);
+
+    filter::BackendScorer scorer(*backend, map.image.view());
+    filter::FilterConfig cfg;  // the dissertation's choices: KLD sampling, logistic:0.2
+    cfg.metres_per_pixel = map.metres_per_pixel;
+    cfg.seed = a.seed;
+    filter::ParticleFilter pf(scorer, cfg);
+    const filter::LocalizationResult result = filter::run_localization(source, pf, progress_bar);
+
+    const std::string out = a.out.empty() ? (fs::temp_directory_path() / "trnkit-demo").string() : a.out;
+    fs::create_directories(out);
+    filter::write_rows_csv(out + "/localization.csv", result.rows);
+    filter::write_summary_json(out + "/summary.json", result.summary,
+                               {{"backend", backend->info().name}, {"conversion", cfg.conversion.to_string()},
+                                {"sampling", filter::to_string(cfg.sampling)}, {"scenario", preset.name}, {"scoring_density", "dense"}},
+                               {{"seed", static_cast<double>(a.seed)}, {"filter_rate_hz", preset.fps / stride},
+                                {"map_year", static_cast<double>(a.map_year)}, {"flight_year", static_cast<double>(a.flight_year)}});
+    std::cout << "DPC-PFL demo: " << preset.name << ", " << a.distance_km << " km at " << preset.altitude_m << " m, map "
+              << a.flight_year - a.map_year << " years older than the flight, backend " << backend->info().name << ", seed " << a.seed
+              << "\n"
+              << filter::format_summary(result.summary) << "summary JSON: " << out << "/summary.json\nper-step CSV: " << out
+              << "/localization.csv\n";
+    if (!a.no_plots) {
+        const filter::PlotFiles plots = filter::plot_run(out, result.rows, result.summary, map.image.view(), map.metres_per_pixel, preset.name);
+        std::cout << "plots: " << plots.trajectory_png << "\n       " << plots.error_png << "\n";
+    }
+    std::printf("total %.1f s (maps %.1f s)\n", seconds_since(t0), maps_s);
 }
 
 }  // namespace
 
 void add_demo_command(CLI::App& app) {
-    struct Args {
-        int particles = 2000;
-        std::string map;
-    };
-    auto a = std::make_shared<Args>();
-    auto* cmd = app.add_subcommand("demo", "Quick cross-backend scoring and Sobel run on built-in data, printed as a table");
-    cmd->add_option("-n,--particles", a->particles, "Particles to score")->capture_default_str()->check(CLI::Range(1, 1000000));
-    cmd->add_option("--map", a->map, "Use this map image instead of the built-in one");
-    cmd->callback([a] {
-        const GrayImage map = a->map.empty() ? builtin_map(1600, 1200) : load_gray(a->map);
-        const int tw = 232, th = 174;  // a 640x480 frame at the dissertation's 0.36 map/camera scale
-        if (map.width < tw + 2 || map.height < th + 2) throw Error("demo: map must be larger than " + std::to_string(tw) + "x" + std::to_string(th));
-        const int x0 = map.width / 2 - tw / 2, y0 = map.height / 2 - th / 2;
-        GrayImage templ{tw, th, std::vector<std::uint8_t>(std::size_t(tw) * th)};
-        for (int v = 0; v < th; ++v) std::copy_n(map.pixels.data() + std::size_t(y0 + v) * map.width + x0, tw, templ.pixels.data() + std::size_t(v) * tw);
-        const Pose truth{x0 + (tw - 1) / 2.0f, y0 + (th - 1) / 2.0f, 0, 1};
-
-        std::mt19937 rng(1);
-        std::normal_distribution<float> d(0, 60), dyaw(0, 0.2f);
-        std::vector<Pose> poses(a->particles);
-        for (Pose& p : poses) p = {truth.x + d(rng), truth.y + d(rng), dyaw(rng), 1.0f};
-        poses[0] = truth;
-
-        const int sw = 1920, sh = 1080;
-        const GrayImage frame = builtin_map(sw, sh);
-        std::vector<std::int16_t> gx(std::size_t(sw) * sh), gy(gx.size());
-
-        std::vector<ParticleScore> reference;
-        std::printf("map %dx%d, template %dx%d, %d particles (particle 0 at the true pose), Sobel %dx%d\n\n", map.width, map.height, tw, th,
-                    a->particles, sw, sh);
-        std::printf("%-10s %-34s %12s %14s %10s %12s %14s\n", "backend", "device", "score ms", "particles/s", "best", "max |dNCC|",
-                    "sobel ms");
-        for (const FamilyStatus& f : default_registry().status()) {
-            if (f.devices.empty()) {
-                std::printf("%-10s not available: %s\n", f.family.c_str(), f.why_none.c_str());
-                continue;
-            }
-            for (const DeviceInfo& dev : f.devices) {
-                auto backend = default_registry().create(dev.name);
-                const MapHandle h = backend->upload_map(map.view());
-                std::vector<ParticleScore> scores(poses.size());
-                const ScoringPlan plan = make_scoring_plan(templ.view(), {});
-                backend->score(h, plan, poses, scores);  // warm-up: kernel build, buffer allocation
-                const auto t0 = std::chrono::steady_clock::now();
-                backend->score(h, plan, poses, scores);
-                const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-                if (reference.empty()) reference = scores;  // cpu-ref comes first
-                double worst = 0;
-                for (std::size_t i = 0; i < scores.size(); ++i) worst = std::max(worst, double(std::fabs(scores[i].ncc - reference[i].ncc)));
-                const auto best = std::max_element(scores.begin(), scores.end(), [](auto& l, auto& r) { return l.ncc < r.ncc; }) - scores.begin();
-                backend->sobel(frame.view(), {gx.data(), sw, sh, sw}, {gy.data(), sw, sh, sw});
-                const auto s0 = std::chrono::steady_clock::now();
-                backend->sobel(frame.view(), {gx.data(), sw, sh, sw}, {gy.data(), sw, sh, sw});
-                const double sms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - s0).count();
-                std::printf("%-10s %-34.34s %12.2f %14.0f %10s %12.2e %14.2f\n", dev.name.c_str(), dev.device.c_str(), ms,
-                            poses.size() / (ms / 1000), best == 0 ? "true pose" : "WRONG", worst, sms);
-                if (best != 0 || worst > 1e-4) throw Error("demo: " + dev.name + " disagrees with cpu-ref");
-            }
-        }
-        std::printf("\nEvery available backend found the true pose and agreed with cpu-ref within 1e-4.\n"
-                    "Times are single wall-clock runs on this machine; see bench/ for proper measurements.\n");
-    });
+    auto a = std::make_shared<DemoArgs>();
+    auto* cmd = app.add_subcommand("demo", "Simulate a ~2 km flight over the built-in procedural map and localize it (DPC-PFL)");
+    cmd->add_option("--scenario", a->scenario, "Scenario preset (terrain, shape, altitude)")->capture_default_str();
+    cmd->add_option("--distance-km", a->distance_km, "Distance to fly")->capture_default_str();
+    cmd->add_option("--backend", a->backend, "Scoring backend or 'fastest'")->capture_default_str();
+    cmd->add_option("--rate", a->rate_hz, "Filter rate in Hz")->capture_default_str();
+    cmd->add_option("--map-year", a->map_year, "Year of the localization map")->capture_default_str();
+    cmd->add_option("--flight-year", a->flight_year, "Year the flight sees")->capture_default_str();
+    cmd->add_option("--seed", a->seed, "Seed of map, flight and filter")->capture_default_str();
+    cmd->add_option("--out", a->out, "Output folder (default: <temp>/trnkit-demo)");
+    cmd->add_flag("--no-plots", a->no_plots, "Skip the gnuplot step");
+    cmd->callback([a] { demo(*a); });
 }
 
 }  // namespace trn::cli

@@ -1,0 +1,112 @@
+#include "trn/filter/localization.hpp"
+
+#include <chrono>
+#include <cmath>
+
+#include "trn/error.hpp"
+
+namespace trn::filter {
+
+double fitted_slope(const std::vector<double>& x, const std::vector<double>& y) {
+    const std::size_t n = x.size();
+    if (n < 2 || y.size() != n) return NAN;
+    double mx = 0, my = 0;
+    for (std::size_t i = 0; i < n; ++i) mx += x[i], my += y[i];
+    mx /= n, my /= n;
+    double sxy = 0, sxx = 0;
+    for (std::size_t i = 0; i < n; ++i) sxy += (x[i] - mx) * (y[i] - my), sxx += (x[i] - mx) * (x[i] - mx);
+    return sxx > 0 ? sxy / sxx : NAN;
+}
+
+LocalizationSummary summarise(const std::vector<LocalizationRow>& rows, const FilterCounters& counters, double wall_s) {
+    LocalizationSummary s;
+    s.steps = rows.size();
+    s.counters = counters;
+    if (rows.empty()) return s;
+    std::vector<double> km, fe, oe;
+    double particles = 0, score = 0;
+    for (const LocalizationRow& r : rows) {
+        particles += r.particles, score += r.score_ms;
+        if (std::isfinite(r.error_m) && std::isfinite(r.odometry_error_m)) {
+            km.push_back(r.distance_m / 1000), fe.push_back(r.error_m), oe.push_back(r.odometry_error_m);
+        }
+    }
+    s.mean_particles = particles / rows.size();
+    s.mean_score_ms = score / rows.size();
+    s.distance_m = rows.back().distance_m;
+    s.frames_per_second = wall_s > 0 ? rows.size() / wall_s : 0;
+    if (!fe.empty()) {
+        double sf = 0, so = 0;
+        for (std::size_t i = 0; i < fe.size(); ++i) sf += fe[i], so += oe[i];
+        s.filter_mean_error_m = sf / fe.size(), s.odometry_mean_error_m = so / oe.size();
+        s.filter_final_error_m = fe.back(), s.odometry_final_error_m = oe.back();
+        s.filter_error_slope_m_per_km = fitted_slope(km, fe);
+        s.odometry_error_slope_m_per_km = fitted_slope(km, oe);
+    }
+    return s;
+}
+
+LocalizationResult run_localization(FlightSource& source, ParticleFilter& filter, const ProgressFn& progress, double start_x,
+                                    double start_y) {
+    LocalizationResult result;
+    const double mpp = filter.config().metres_per_pixel;
+    FlightSample s;
+    bool started = false;
+    double odo_e0 = 0, odo_n0 = 0, prev_e = 0, prev_n = 0, prev_tx = 0, prev_ty = 0, distance_m = 0;
+    const std::size_t hint = source.frames_hint();
+    double wall_s = 0;
+    while (source.next(s)) {
+        const auto t0 = std::chrono::steady_clock::now();
+        if (!started) {
+            if (std::isnan(start_x) || std::isnan(start_y)) {
+                if (!s.has_truth) throw Error("localize: the first frame has no ground truth; give the start position");
+                start_x = s.truth_x, start_y = s.truth_y;
+            }
+            filter.initialise(start_x, start_y, s.heading_rad);
+            if (!std::isfinite(s.odometry_east_m) || !std::isfinite(s.odometry_north_m))
+                throw Error("localize: the first frame has no odometry reading");
+            odo_e0 = prev_e = s.odometry_east_m, odo_n0 = prev_n = s.odometry_north_m;
+            prev_tx = s.truth_x, prev_ty = s.truth_y;
+            started = true;
+        }
+        FilterInput in;
+        const bool odo_ok = std::isfinite(s.odometry_east_m) && std::isfinite(s.odometry_north_m);
+        in.odometry_east_m = odo_ok ? s.odometry_east_m - prev_e : NAN;
+        in.odometry_north_m = odo_ok ? s.odometry_north_m - prev_n : NAN;
+        if (odo_ok) prev_e = s.odometry_east_m, prev_n = s.odometry_north_m;
+        in.heading_rad = s.heading_rad;
+        in.frame = s.image.view();
+        if (s.image.pixels.empty()) in.frame = {};
+        in.map_px_per_camera_px = s.map_px_per_camera_px;
+        const StepReport rep = filter.step(in);
+        const double step_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        wall_s += step_s;
+
+        LocalizationRow row;
+        row.frame = s.frame_index;
+        row.time_s = s.time_s;
+        if (s.has_truth) {
+            distance_m += std::hypot(s.truth_x - prev_tx, s.truth_y - prev_ty) * mpp;
+            prev_tx = s.truth_x, prev_ty = s.truth_y;
+            row.truth_x = s.truth_x, row.truth_y = s.truth_y;
+        }
+        row.distance_m = distance_m;
+        row.odometry_x = start_x + (prev_e - odo_e0) / mpp;
+        row.odometry_y = start_y - (prev_n - odo_n0) / mpp;
+        row.estimate_x = rep.estimate.x, row.estimate_y = rep.estimate.y, row.estimate_yaw = rep.estimate.yaw;
+        row.best_x = rep.estimate.best_x, row.best_y = rep.estimate.best_y;
+        if (s.has_truth) {
+            row.error_m = std::hypot(row.estimate_x - s.truth_x, row.estimate_y - s.truth_y) * mpp;
+            row.odometry_error_m = std::hypot(row.odometry_x - s.truth_x, row.odometry_y - s.truth_y) * mpp;
+        }
+        row.particles = rep.particles, row.off_map = rep.off_map;
+        row.score_ms = rep.score_ms, row.step_ms = step_s * 1000;
+        row.odometry_lost = rep.odometry_lost, row.frame_missing = rep.frame_missing, row.reinitialised = rep.reinitialised;
+        result.rows.push_back(row);
+        if (progress) progress(result.rows.size(), hint);
+    }
+    result.summary = summarise(result.rows, filter.counters(), wall_s);
+    return result;
+}
+
+}  // namespace trn::filter

@@ -1,0 +1,260 @@
+#include "trn/filter/particle_filter.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <unordered_set>
+
+#include "trn/error.hpp"
+#include "trn/filter/kld.hpp"
+
+namespace trn::filter {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kDeg = kPi / 180;
+
+std::uint64_t mix64(std::uint64_t z) {
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+}
+
+double wrap(double a) {
+    a = std::fmod(a + kPi, 2 * kPi);
+    if (a <= 0) a += 2 * kPi;
+    return a - kPi;
+}
+
+}  // namespace
+
+SamplingMethod parse_sampling_method(std::string_view text) {
+    if (text == "kld") return SamplingMethod::Kld;
+    if (text == "importance") return SamplingMethod::Importance;
+    if (text == "rejection") return SamplingMethod::Rejection;
+    throw Error("sampling method '" + std::string(text) + "': unknown; expected kld, importance or rejection");
+}
+
+const char* to_string(SamplingMethod m) {
+    return m == SamplingMethod::Kld ? "kld" : m == SamplingMethod::Importance ? "importance" : "rejection";
+}
+
+void FilterConfig::validate() const {
+    auto positive = [](double v, const char* name) {
+        if (!(v > 0) || !std::isfinite(v)) throw Error(std::string("filter config: ") + name + " must be > 0");
+    };
+    auto non_negative = [](double v, const char* name) {
+        if (!(v >= 0) || !std::isfinite(v)) throw Error(std::string("filter config: ") + name + " must be >= 0");
+    };
+    positive(metres_per_pixel, "metres_per_pixel");
+    positive(kld_epsilon, "kld_epsilon");
+    positive(kld_bin_m, "kld_bin_m");
+    positive(init_radius_m, "init_radius_m");
+    positive(reinit_radius_m, "reinit_radius_m");
+    non_negative(translation_noise, "translation_noise");
+    non_negative(position_noise_m, "position_noise_m");
+    non_negative(heading_noise_deg, "heading_noise_deg");
+    if (!(kld_upper_quantile > 0 && kld_upper_quantile < 1)) throw Error("filter config: kld_upper_quantile must be in (0, 1)");
+    if (min_particles < 1) throw Error("filter config: min_particles must be >= 1");
+    if (max_particles < min_particles) throw Error("filter config: max_particles must be >= min_particles");
+    if (fixed_particles < 1) throw Error("filter config: fixed_particles must be >= 1");
+}
+
+ParticleFilter::ParticleFilter(ParticleScorer& scorer, const FilterConfig& config)
+    : scorer_(scorer), config_(config), rng_(mix64(config.seed ^ 0x5DEECE66Dull)) {
+    config_.validate();
+}
+
+double ParticleFilter::uniform() {
+    rng_ += 0x9E3779B97F4A7C15ull;
+    return static_cast<double>(mix64(rng_) >> 11) * 0x1.0p-53;
+}
+
+double ParticleFilter::normal() {
+    const double u1 = 1.0 - uniform(), u2 = uniform();
+    return std::sqrt(-2.0 * std::log(u1)) * std::cos(2 * kPi * u2);
+}
+
+void ParticleFilter::scatter(double x, double y, double heading, bool have_heading, double radius_m, std::size_t count) {
+    const double r_px = radius_m / config_.metres_per_pixel;
+    particles_.resize(count);
+    for (Particle& p : particles_) {
+        const double r = r_px * std::sqrt(uniform()), a = 2 * kPi * uniform();  // uniform over the disc
+        p.x = x + r * std::cos(a);
+        p.y = y + r * std::sin(a);
+        p.yaw = have_heading ? wrap(heading + config_.heading_noise_deg * kDeg * normal()) : wrap(2 * kPi * uniform());
+        p.weight = 1;
+    }
+}
+
+void ParticleFilter::initialise(double x, double y, double heading_rad) {
+    if (!std::isfinite(x) || !std::isfinite(y)) throw Error("ParticleFilter::initialise: position must be finite");
+    const std::size_t n = config_.sampling == SamplingMethod::Kld ? config_.max_particles : config_.fixed_particles;
+    scatter(x, y, heading_rad, std::isfinite(heading_rad), config_.init_radius_m, n);
+    last_east_ = last_north_ = 0;
+    initialised_ = true;
+    update_estimate();
+}
+
+ParticleFilter::Motion ParticleFilter::motion_from(const FilterInput& in, bool& lost) {
+    double east = in.odometry_east_m, north = in.odometry_north_m;
+    lost = !std::isfinite(east) || !std::isfinite(north);
+    if (lost) {
+        east = last_east_, north = last_north_;  // constant velocity while odometry is lost
+    } else {
+        last_east_ = east, last_north_ = north;
+    }
+    Motion m;
+    m.distance_px = std::hypot(east, north) / config_.metres_per_pixel;
+    m.have_heading = std::isfinite(in.heading_rad);
+    m.heading = m.have_heading ? in.heading_rad : 0;
+    m.translation_sd_px = m.distance_px * config_.translation_noise * (lost ? 3 : 1);
+    return m;
+}
+
+void ParticleFilter::propagate(Particle& p, const Motion& m) {
+    // Eq. 2.9 with the magnetometer as the rotation measurement, then eqs. 2.7-2.8 along the new
+    // heading (compass: east = sin, north = cos = -y on the map).
+    const double sd_yaw = config_.heading_noise_deg * kDeg;
+    p.yaw = wrap((m.have_heading ? m.heading : p.yaw) + sd_yaw * normal());
+    const double d = m.distance_px + m.translation_sd_px * normal();
+    const double pos_sd = config_.position_noise_m / config_.metres_per_pixel;
+    p.x += d * std::sin(p.yaw) + pos_sd * normal();
+    p.y -= d * std::cos(p.yaw) + pos_sd * normal();
+}
+
+std::size_t ParticleFilter::draw_index(double total) {
+    const double u = uniform() * total;
+    const auto it = std::upper_bound(cumulative_.begin(), cumulative_.end(), u);
+    return std::min<std::size_t>(it - cumulative_.begin(), cumulative_.size() - 1);
+}
+
+std::size_t ParticleFilter::sample_and_propagate(const Motion& m) {
+    cumulative_.resize(particles_.size());
+    double total = 0, max_w = 0;
+    for (std::size_t i = 0; i < particles_.size(); ++i) {
+        total += particles_[i].weight;
+        cumulative_[i] = total;
+        max_w = std::max(max_w, particles_[i].weight);
+    }
+    const double bin_px = config_.kld_bin_m / config_.metres_per_pixel;
+    std::unordered_set<std::uint64_t> bins;
+    auto occupy = [&](const Particle& p) {
+        const auto bx = static_cast<std::int64_t>(std::floor(p.x / bin_px)), by = static_cast<std::int64_t>(std::floor(p.y / bin_px));
+        bins.insert((static_cast<std::uint64_t>(bx) << 32) ^ static_cast<std::uint32_t>(by));
+    };
+    drawn_.clear();
+    auto add = [&](std::size_t i) {
+        Particle p = particles_[i];
+        propagate(p, m);
+        p.weight = 1;
+        drawn_.push_back(p);
+        occupy(p);
+    };
+    switch (config_.sampling) {
+        case SamplingMethod::Kld: {
+            double bound = 0;
+            std::size_t counted_bins = 0;
+            while (drawn_.size() < config_.max_particles) {
+                if (drawn_.size() >= config_.min_particles) {
+                    if (bins.size() != counted_bins) {  // the bound only moves when a new bin fills
+                        counted_bins = bins.size();
+                        bound = kld_bound(counted_bins, config_.kld_epsilon, config_.kld_upper_quantile);
+                    }
+                    if (static_cast<double>(drawn_.size()) >= bound) break;
+                }
+                add(draw_index(total));
+            }
+            break;
+        }
+        case SamplingMethod::Importance:
+            while (drawn_.size() < config_.fixed_particles) add(draw_index(total));
+            break;
+        case SamplingMethod::Rejection:
+            // Pick uniformly, keep with probability weight / max weight.
+            while (drawn_.size() < config_.fixed_particles) {
+                const std::size_t i = std::min(particles_.size() - 1, static_cast<std::size_t>(uniform() * particles_.size()));
+                if (uniform() * max_w < particles_[i].weight) add(i);
+            }
+            break;
+    }
+    particles_.swap(drawn_);
+    return bins.size();
+}
+
+std::size_t ParticleFilter::measure(const FilterInput& in, double& score_ms) {
+    poses_.resize(particles_.size());
+    scores_.resize(particles_.size());
+    for (std::size_t i = 0; i < particles_.size(); ++i)
+        poses_[i] = {static_cast<float>(particles_[i].x), static_cast<float>(particles_[i].y), static_cast<float>(particles_[i].yaw), 1.0f};
+    const auto t0 = std::chrono::steady_clock::now();
+    scorer_.score(in.frame, in.map_px_per_camera_px, poses_, scores_, nullptr);
+    score_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    std::size_t invalid = 0;
+    for (std::size_t i = 0; i < particles_.size(); ++i) {
+        double w = 0;
+        if (scores_[i].valid()) {
+            w = config_.conversion(scores_[i].ncc);
+            if (!(w > 0) || !std::isfinite(w)) w = 0;
+        } else {
+            ++invalid;
+        }
+        particles_[i].weight = w;
+    }
+    return invalid;
+}
+
+void ParticleFilter::update_estimate() {
+    double sw = 0, sx = 0, sy = 0, ss = 0, sc = 0, best = -1;
+    for (std::size_t i = 0; i < particles_.size(); ++i) {
+        const Particle& p = particles_[i];
+        sw += p.weight, sx += p.weight * p.x, sy += p.weight * p.y;
+        ss += p.weight * std::sin(p.yaw), sc += p.weight * std::cos(p.yaw);
+        if (p.weight > best) {
+            best = p.weight;
+            estimate_.best_x = p.x, estimate_.best_y = p.y, estimate_.best_yaw = p.yaw;
+            estimate_.best_ncc = i < scores_.size() && scores_.size() == particles_.size() ? scores_[i].ncc : 0;
+        }
+    }
+    if (sw > 0) {
+        estimate_.x = sx / sw, estimate_.y = sy / sw, estimate_.yaw = std::atan2(ss, sc);
+    }
+}
+
+StepReport ParticleFilter::step(const FilterInput& in) {
+    if (!initialised_) throw Error("ParticleFilter::step: call initialise() first");
+    StepReport r;
+    const Motion m = motion_from(in, r.odometry_lost);
+    r.occupied_bins = sample_and_propagate(m);
+    r.frame_missing = in.frame.empty();
+    scores_.clear();
+    if (!r.frame_missing) {
+        r.off_map = measure(in, r.score_ms);
+        double total = 0;
+        for (const Particle& p : particles_) total += p.weight;
+        if (!(total > 0) || !std::isfinite(total)) {
+            // Collapse: redraw around the last estimate moved by this step's odometry, score again.
+            r.reinitialised = true;
+            Particle centre{estimate_.x, estimate_.y, estimate_.yaw, 1};
+            centre.x += m.distance_px * std::sin(m.heading), centre.y -= m.distance_px * std::cos(m.heading);
+            const std::size_t n = particles_.size();
+            scatter(centre.x, centre.y, m.heading, m.have_heading, config_.reinit_radius_m, n);
+            r.off_map += measure(in, r.score_ms);
+            total = 0;
+            for (const Particle& p : particles_) total += p.weight;
+            if (!(total > 0) || !std::isfinite(total))
+                for (Particle& p : particles_) p.weight = 1;  // nothing to learn from this frame
+        }
+    }
+    update_estimate();
+    r.estimate = estimate_;
+    r.particles = particles_.size();
+    ++counters_.steps;
+    counters_.odometry_lost += r.odometry_lost;
+    counters_.frames_missing += r.frame_missing;
+    counters_.particles_off_map += r.off_map;
+    counters_.reinitialisations += r.reinitialised;
+    return r;
+}
+
+}  // namespace trn::filter

@@ -1,0 +1,166 @@
+#include "trn/filter/report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "trn/error.hpp"
+
+namespace trn::filter {
+namespace {
+
+std::ofstream open_out(const std::string& path) {
+    std::ofstream out(path);
+    if (!out) throw Error(path + ": cannot open for writing");
+    out.precision(10);
+    return out;
+}
+
+void close_out(std::ofstream& out, const std::string& path) {
+    out.close();
+    if (!out) throw Error(path + ": write failed");
+}
+
+// Gnuplot string literal (single quotes; a single quote is doubled).
+std::string quoted(const std::string& s) {
+    std::string q = "'";
+    for (char c : s) q += c == '\'' ? std::string("''") : std::string(1, c);
+    return q + "'";
+}
+
+// Shell word in single quotes.
+std::string shell_quoted(const std::string& s) {
+    std::string q = "'";
+    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return q + "'";
+}
+
+}  // namespace
+
+void write_rows_csv(const std::string& path, const std::vector<LocalizationRow>& rows) {
+    std::ofstream out = open_out(path);
+    out << "frame,time_s,distance_m,truth_x,truth_y,odometry_x,odometry_y,estimate_x,estimate_y,estimate_yaw,best_x,best_y,"
+           "error_m,odometry_error_m,particles,off_map,score_ms,step_ms,odometry_lost,frame_missing,reinitialised\n";
+    for (const LocalizationRow& r : rows)
+        out << r.frame << ',' << r.time_s << ',' << r.distance_m << ',' << r.truth_x << ',' << r.truth_y << ',' << r.odometry_x << ','
+            << r.odometry_y << ',' << r.estimate_x << ',' << r.estimate_y << ',' << r.estimate_yaw << ',' << r.best_x << ',' << r.best_y
+            << ',' << r.error_m << ',' << r.odometry_error_m << ',' << r.particles << ',' << r.off_map << ',' << r.score_ms << ','
+            << r.step_ms << ',' << r.odometry_lost << ',' << r.frame_missing << ',' << r.reinitialised << '\n';
+    close_out(out, path);
+}
+
+void write_summary_json(const std::string& path, const LocalizationSummary& s, const std::map<std::string, std::string>& strings,
+                        const std::map<std::string, double>& numbers) {
+    nlohmann::ordered_json j;
+    auto num = [](double v) { return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr); };
+    j["filter_mean_error_m"] = num(s.filter_mean_error_m);
+    j["odometry_mean_error_m"] = num(s.odometry_mean_error_m);
+    j["filter_final_error_m"] = num(s.filter_final_error_m);
+    j["odometry_final_error_m"] = num(s.odometry_final_error_m);
+    j["filter_error_slope_m_per_km"] = num(s.filter_error_slope_m_per_km);
+    j["odometry_error_slope_m_per_km"] = num(s.odometry_error_slope_m_per_km);
+    j["mean_particles"] = num(s.mean_particles);
+    j["frames_per_second"] = num(s.frames_per_second);
+    j["mean_score_ms"] = num(s.mean_score_ms);
+    j["steps"] = s.steps;
+    j["distance_m"] = num(s.distance_m);
+    j["odometry_lost"] = s.counters.odometry_lost;
+    j["frames_missing"] = s.counters.frames_missing;
+    j["particles_off_map"] = s.counters.particles_off_map;
+    j["reinitialisations"] = s.counters.reinitialisations;
+    for (const auto& [k, v] : strings) j[k] = v;
+    for (const auto& [k, v] : numbers) j[k] = num(v);
+    std::ofstream out = open_out(path);
+    out << j.dump(2) << '\n';
+    close_out(out, path);
+}
+
+std::string format_summary(const LocalizationSummary& s) {
+    char buf[1024];
+    std::snprintf(buf, sizeof buf,
+                  "steps %zu over %.2f km\n"
+                  "mean error:   filter %8.2f m   odometry %8.2f m   (ratio %.3f)\n"
+                  "final error:  filter %8.2f m   odometry %8.2f m\n"
+                  "error slope:  filter %8.2f m/km odometry %8.2f m/km (ratio %.3f)\n"
+                  "particles:    mean %.1f   filter speed %.1f frames/s (mean scoring %.2f ms)\n"
+                  "handled:      %zu odometry lost, %zu frames missing, %zu off-map particle scores, %zu re-initialisations\n",
+                  s.steps, s.distance_m / 1000, s.filter_mean_error_m, s.odometry_mean_error_m, s.filter_mean_error_m / s.odometry_mean_error_m,
+                  s.filter_final_error_m, s.odometry_final_error_m, s.filter_error_slope_m_per_km, s.odometry_error_slope_m_per_km,
+                  s.filter_error_slope_m_per_km / s.odometry_error_slope_m_per_km, s.mean_particles, s.frames_per_second, s.mean_score_ms,
+                  s.counters.odometry_lost, s.counters.frames_missing, s.counters.particles_off_map, s.counters.reinitialisations);
+    return buf;
+}
+
+PlotFiles plot_run(const std::string& folder, const std::vector<LocalizationRow>& rows, const LocalizationSummary& s, GrayView map,
+                   double mpp, const std::string& title) {
+    if (std::system("command -v gnuplot >/dev/null 2>&1") != 0)
+        throw Error("plot: gnuplot not found on PATH (install gnuplot-nox); the CSV and JSON were written");
+    // The map as raw 8-bit pixels, at most 1000 px wide, in metres on the axes.
+    const double factor = std::max(1.0, std::max(map.width, map.height) / 1000.0);
+    const int w = std::max(1, static_cast<int>(map.width / factor)), h = std::max(1, static_cast<int>(map.height / factor));
+    std::vector<std::uint8_t> small(std::size_t(w) * h);
+    const cv::Mat src(map.height, map.width, CV_8UC1, const_cast<std::uint8_t*>(map.data), std::size_t(map.stride));
+    cv::Mat dst(h, w, CV_8UC1, small.data());
+    cv::resize(src, dst, dst.size(), 0, 0, cv::INTER_AREA);
+    const std::string raw = folder + "/map_plot.gray", data = folder + "/plot_data.tsv";
+    {
+        std::ofstream out(raw, std::ios::binary);
+        out.write(reinterpret_cast<const char*>(small.data()), static_cast<std::streamsize>(small.size()));
+        if (!out) throw Error(raw + ": write failed");
+    }
+    {
+        std::ofstream out = open_out(data);
+        for (const LocalizationRow& r : rows)
+            out << r.distance_m / 1000 << '\t' << r.truth_x * mpp << '\t' << r.truth_y * mpp << '\t' << r.odometry_x * mpp << '\t'
+                << r.odometry_y * mpp << '\t' << r.estimate_x * mpp << '\t' << r.estimate_y * mpp << '\t' << r.error_m << '\t'
+                << r.odometry_error_m << '\n';
+        close_out(out, data);
+    }
+    PlotFiles files{folder + "/trajectory.png", folder + "/error.png"};
+    const std::string script_path = folder + "/plot.gp";
+    {
+        std::ofstream gp = open_out(script_path);
+        const double px_m = factor * mpp;
+        // Trajectories: zoom on the flown area plus a margin.
+        double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
+        for (const LocalizationRow& r : rows)
+            for (auto [x, y] : {std::pair{r.truth_x, r.truth_y}, std::pair{r.odometry_x, r.odometry_y}, std::pair{r.estimate_x, r.estimate_y}})
+                if (std::isfinite(x) && std::isfinite(y)) x0 = std::min(x0, x * mpp), x1 = std::max(x1, x * mpp), y0 = std::min(y0, y * mpp), y1 = std::max(y1, y * mpp);
+        const double margin = 50;
+        gp << "set terminal pngcairo size 1100,1000 font 'sans,11'\n"
+           << "set output " << quoted(files.trajectory_png) << "\n"
+           << "set title " << quoted(title + ": trajectories on the map") << "\n"
+           << "set xlabel 'east (m)'\nset ylabel 'south (m)'\nset size ratio -1\nunset colorbox\n"
+           << "set palette gray\nset key opaque box\n"
+           << "set xrange [" << x0 - margin << ":" << x1 + margin << "]\n"
+           << "set yrange [" << y1 + margin << ":" << y0 - margin << "]\n"
+           << "plot " << quoted(raw) << " binary array=(" << w << "," << h << ") format='%uchar' dx=" << px_m << " dy=" << px_m
+           << " origin=(0,0) flipy with image notitle, \\\n"
+           << "  " << quoted(data) << " using 2:3 with lines lw 3 lc rgb '#1a9850' title 'ground truth', \\\n"
+           << "  '' using 4:5 with lines lw 2 lc rgb '#d73027' title 'visual odometry', \\\n"
+           << "  '' using 6:7 with lines lw 2 lc rgb '#4575b4' title 'DPC-PFL estimate'\n";
+        gp << "set output " << quoted(files.error_png) << "\n"
+           << "set terminal pngcairo size 1100,600 font 'sans,11'\n"
+           << "reset\nset title " << quoted(title + ": position error over distance flown") << "\n"
+           << "set xlabel 'distance flown (km)'\nset ylabel 'error (m)'\nset grid\nset key left top\n"
+           << "fo(x) = ao*x + bo\nff(x) = af*x + bf\n"
+           << "fit fo(x) " << quoted(data) << " using 1:9 via ao, bo\n"
+           << "fit ff(x) " << quoted(data) << " using 1:8 via af, bf\n"
+           << "plot " << quoted(data) << " using 1:9 with lines lw 2 lc rgb '#d73027' title 'visual odometry', \\\n"
+           << "  '' using 1:8 with lines lw 2 lc rgb '#4575b4' title 'DPC-PFL', \\\n"
+           << "  fo(x) with lines dt 2 lw 2 lc rgb '#d73027' title sprintf('odometry trend %.1f m/km', ao), \\\n"
+           << "  ff(x) with lines dt 2 lw 2 lc rgb '#4575b4' title sprintf('filter trend %.1f m/km', af)\n";
+        close_out(gp, script_path);
+    }
+    (void)s;
+    const std::string cmd = "gnuplot " + shell_quoted(script_path) + " > " + shell_quoted(folder + "/gnuplot.log") + " 2>&1";
+    if (std::system(cmd.c_str()) != 0)
+        throw Error("plot: gnuplot failed on " + script_path + " (see " + folder + "/gnuplot.log)");
+    return files;
+}
+
+}  // namespace trn::filter

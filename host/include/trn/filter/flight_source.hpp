@@ -1,0 +1,66 @@
+#pragma once
+// Where the localizer gets its frames: a recorded AIR flight folder or a flight simulated in memory.
+// Both give the same samples (sensors + optional ground truth + the camera image), every
+// `stride`-th frame, so the filter can run at a lower rate than the camera.
+#include <cstddef>
+#include <memory>
+#include <string>
+
+#include "trn/io/image_io.hpp"
+#include "trn/sim/air_format.hpp"
+#include "trn/sim/flight.hpp"
+
+namespace trn::filter {
+
+struct FlightSample {
+    std::size_t frame_index = 0;
+    double time_s = 0;
+    bool has_truth = false;
+    double truth_x = 0, truth_y = 0, truth_yaw = 0;     // map pixels, radians
+    double odometry_east_m = 0, odometry_north_m = 0;    // visual odometry, from the start (NaN: lost)
+    double heading_rad = 0;                              // magnetometer / IMU heading (NaN: none)
+    double map_px_per_camera_px = 1;
+    GrayImage image;                                     // empty when it failed to load
+    std::string image_error;                             // why it is empty
+};
+
+class FlightSource {
+public:
+    virtual ~FlightSource() = default;
+    virtual bool next(FlightSample& sample) = 0;
+    virtual std::size_t frames_hint() const = 0;  // expected samples (0: unknown)
+};
+
+// An AIR folder (flight.json gives the camera; the map resolution is the localization map's).
+class AirFlightSource : public FlightSource {
+public:
+    AirFlightSource(const std::string& folder, const sim::Camera& camera, double metres_per_pixel, double fps,
+                    std::size_t stride, std::size_t frames_hint = 0);
+    bool next(FlightSample& sample) override;
+    std::size_t frames_hint() const override { return hint_; }
+
+private:
+    sim::AirReader reader_;
+    sim::Camera camera_;
+    double mpp_, fps_;
+    std::size_t stride_, row_ = 0, hint_;
+};
+
+// A flight simulated over `world` (kept alive by the caller): renders only the frames it returns.
+class SimulatedFlightSource : public FlightSource {
+public:
+    SimulatedFlightSource(const sim::Map& world, const sim::FlightConfig& config, std::size_t stride);
+    bool next(FlightSample& sample) override;
+    std::size_t frames_hint() const override { return (simulator_.frame_count() + stride_ - 1) / stride_; }
+
+private:
+    const sim::Map& world_;
+    sim::FlightConfig config_;
+    sim::FlightSimulator simulator_;
+    std::size_t stride_;
+};
+
+// Counts the rows of an AIR folder's metadata.csv (for a progress bar).
+std::size_t count_air_rows(const std::string& folder);
+
+}  // namespace trn::filter

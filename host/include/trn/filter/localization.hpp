@@ -1,0 +1,57 @@
+#pragma once
+// Runs a ParticleFilter over a FlightSource and keeps one row per filter step, with the ground
+// truth and odometry next to the estimate; summarises errors the way the dissertation does
+// (mean, final, and the slope of a least-squares line of error over distance flown).
+#include <cmath>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "trn/filter/flight_source.hpp"
+#include "trn/filter/particle_filter.hpp"
+
+namespace trn::filter {
+
+struct LocalizationRow {
+    std::size_t frame = 0;
+    double time_s = 0, distance_m = 0;                 // distance flown along the ground truth
+    double truth_x = NAN, truth_y = NAN;               // map pixels
+    double odometry_x = NAN, odometry_y = NAN;         // odometry placed on the map at the start
+    double estimate_x = 0, estimate_y = 0, estimate_yaw = 0;
+    double best_x = 0, best_y = 0;
+    double error_m = NAN, odometry_error_m = NAN;
+    std::size_t particles = 0, off_map = 0;
+    double score_ms = 0, step_ms = 0;
+    bool odometry_lost = false, frame_missing = false, reinitialised = false;
+};
+
+struct LocalizationSummary {
+    std::size_t steps = 0;
+    double filter_mean_error_m = NAN, odometry_mean_error_m = NAN;
+    double filter_final_error_m = NAN, odometry_final_error_m = NAN;
+    double filter_error_slope_m_per_km = NAN, odometry_error_slope_m_per_km = NAN;
+    double distance_m = 0;
+    double mean_particles = 0;
+    double frames_per_second = 0;   // filter steps per second of wall time (sampling + scoring + estimate)
+    double mean_score_ms = 0;
+    FilterCounters counters;
+};
+
+struct LocalizationResult {
+    std::vector<LocalizationRow> rows;
+    LocalizationSummary summary;
+};
+
+// Progress: (samples done, samples expected or 0).
+using ProgressFn = std::function<void(std::size_t, std::size_t)>;
+
+// Initialises the filter at the first sample's ground truth ("the last known position"; a source
+// without truth must be given `start_x`, `start_y`), then steps it once per sample.
+LocalizationResult run_localization(FlightSource& source, ParticleFilter& filter, const ProgressFn& progress = {},
+                                    double start_x = NAN, double start_y = NAN);
+
+// Least-squares slope of y over x (NaN with fewer than two distinct x).
+double fitted_slope(const std::vector<double>& x, const std::vector<double>& y);
+LocalizationSummary summarise(const std::vector<LocalizationRow>& rows, const FilterCounters& counters, double wall_s);
+
+}  // namespace trn::filter

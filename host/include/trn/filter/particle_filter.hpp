@@ -1,0 +1,141 @@
+#pragma once
+// DPC-PFL: the dissertation's Algorithm 4, a particle filter that localizes a downward camera on an
+// orthophoto map. Particles are (x, y, yaw) in map pixels and radians (scoring.hpp conventions:
+// x east, y south, yaw = compass heading of the frame top).
+//
+// One step per camera frame:
+//   1. Sample particles from the previous set by weight and propagate each with the motion model
+//      (eqs. 2.7-2.9): translation = odometry distance since the last step with noise, along the
+//      heading; heading = magnetometer reading with noise. KLD sampling (eq. 2.22) keeps drawing
+//      until n >= bound(k occupied 5 m x 5 m bins) (within [min, max]); importance and rejection
+//      sampling draw a fixed count.
+//   2. Score ALL particles in one batched ParticleScorer call (the bins depend only on positions,
+//      so sampling first and scoring afterwards is the same algorithm as Algorithm 4's loop).
+//   3. Weight = conversion(NCC) (eqs. 2.16-2.21); estimate = weighted mean of x, y and circular
+//      weighted mean of yaw; the best particle is reported too.
+//
+// Bad input is handled and counted, never fatal:
+//   - lost odometry (a non-finite delta): the last good per-step displacement is reused (constant
+//     velocity) with triple translation noise;
+//   - a missing frame (empty image, e.g. it failed to load): particles are propagated and keep their
+//     weights; no measurement;
+//   - particles whose template leaves the map get an invalid score and weight 0;
+//   - collapse (every weight 0 or non-finite): re-initialisation policy — the particle set is redrawn
+//     uniformly within `reinit_radius_m` of the last estimate (propagated by this step's motion),
+//     headings from the magnetometer, and the step is scored again.
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "trn/filter/conversion.hpp"
+#include "trn/filter/scorer.hpp"
+
+namespace trn::filter {
+
+enum class SamplingMethod { Kld, Importance, Rejection };
+SamplingMethod parse_sampling_method(std::string_view text);  // "kld", "importance", "rejection"
+const char* to_string(SamplingMethod method);
+
+struct FilterConfig {
+    double metres_per_pixel = 1.0;  // map resolution
+    SamplingMethod sampling = SamplingMethod::Kld;
+    Conversion conversion{};        // logistic:0.2, the dissertation's choice
+    // KLD sampling (dissertation: epsilon 0.05, upper quantile 0.9, 5 m bins).
+    double kld_epsilon = 0.05;
+    double kld_upper_quantile = 0.9;
+    double kld_bin_m = 5.0;
+    std::size_t min_particles = 100;
+    std::size_t max_particles = 2000;  // also the size of the initial set
+    std::size_t fixed_particles = 1000;  // importance / rejection sampling
+    // Initialisation: uniform within this radius of the last known position.
+    double init_radius_m = 300;
+    double reinit_radius_m = 300;
+    // Motion noise (eqs. 2.10, 2.11): translation sd = distance * translation_noise + position_noise_m
+    // (per step, plus an isotropic sd of position_noise_m), heading sd around the magnetometer.
+    double translation_noise = 0.05;
+    double position_noise_m = 1.0;
+    double heading_noise_deg = 2.0;
+    std::uint64_t seed = 1;
+
+    void validate() const;  // throws trn::Error naming the field
+};
+
+struct Particle {
+    double x = 0, y = 0, yaw = 0;  // map pixels, radians
+    double weight = 1;
+};
+
+// What the filter gets per camera frame.
+struct FilterInput {
+    double odometry_east_m = 0, odometry_north_m = 0;  // odometry displacement since the last step (NaN: lost)
+    double heading_rad = 0;                            // magnetometer heading (NaN: keep each particle's)
+    GrayView frame;                                    // empty: no image this step
+    double map_px_per_camera_px = 1;                   // from altitude, field of view and map resolution
+};
+
+struct Estimate {
+    double x = 0, y = 0, yaw = 0;  // weighted mean (circular for yaw)
+    double best_x = 0, best_y = 0, best_yaw = 0;
+    double best_ncc = 0;
+};
+
+struct StepReport {
+    Estimate estimate;
+    std::size_t particles = 0;
+    std::size_t occupied_bins = 0;
+    std::size_t off_map = 0;  // particles with an invalid score this step
+    bool odometry_lost = false, frame_missing = false, reinitialised = false;
+    double score_ms = 0;  // wall time of the batched scoring call(s)
+};
+
+struct FilterCounters {
+    std::size_t steps = 0, odometry_lost = 0, frames_missing = 0, particles_off_map = 0, reinitialisations = 0;
+};
+
+class ParticleFilter {
+public:
+    // The scorer must outlive the filter.
+    ParticleFilter(ParticleScorer& scorer, const FilterConfig& config);
+
+    // Particles uniform within init_radius_m of (x, y) map pixels, headings around `heading_rad`.
+    void initialise(double x, double y, double heading_rad);
+    StepReport step(const FilterInput& input);
+
+    const std::vector<Particle>& particles() const { return particles_; }
+    const Estimate& estimate() const { return estimate_; }
+    const FilterCounters& counters() const { return counters_; }
+    const FilterConfig& config() const { return config_; }
+
+private:
+    struct Motion {
+        double distance_px, heading, translation_sd_px;
+        bool have_heading;
+    };
+    Motion motion_from(const FilterInput& input, bool& lost);
+    void propagate(Particle& p, const Motion& m);
+    std::size_t sample_and_propagate(const Motion& m);  // returns occupied bins
+    std::size_t draw_index(double total_weight);
+    void scatter(double x, double y, double heading, bool have_heading, double radius_m, std::size_t count);
+    std::size_t measure(const FilterInput& input, double& score_ms);  // returns invalid count
+    void update_estimate();
+    double uniform();
+    double normal();
+
+    ParticleScorer& scorer_;
+    FilterConfig config_;
+    std::vector<Particle> particles_, drawn_;
+    std::vector<double> cumulative_;
+    std::vector<Pose> poses_;
+    std::vector<ParticleScore> scores_;
+    std::vector<std::uint64_t> bins_;
+    Estimate estimate_;
+    FilterCounters counters_;
+    double last_east_ = 0, last_north_ = 0;
+    bool initialised_ = false;
+    std::uint64_t rng_;
+};
+
+}  // namespace trn::filter

@@ -1,0 +1,33 @@
+#pragma once
+// A localization run on disk: per-step CSV, summary JSON and gnuplot plots (trajectories on the
+// map as the dissertation's Fig. 3.10, error over distance with trend lines as its Fig. 3.9).
+#include <map>
+#include <string>
+
+#include "trn/filter/localization.hpp"
+#include "trn/io/image_io.hpp"
+
+namespace trn::filter {
+
+void write_rows_csv(const std::string& path, const std::vector<LocalizationRow>& rows);
+
+// Summary keys plus free-form `extra` strings (backend, seed, conversion ...); numbers that are not
+// finite are written as null.
+void write_summary_json(const std::string& path, const LocalizationSummary& summary,
+                        const std::map<std::string, std::string>& extra_strings,
+                        const std::map<std::string, double>& extra_numbers);
+
+// A few human-readable lines: errors, slopes, their ratios, particles, speed, counters.
+std::string format_summary(const LocalizationSummary& summary);
+
+struct PlotFiles {
+    std::string trajectory_png, error_png;
+};
+
+// Draws both plots into `folder` with gnuplot (run as a subprocess). The map is drawn under the
+// trajectories, downscaled to at most 1000 pixels. Throws trn::Error when gnuplot is missing or fails
+// (this is the only step that needs it).
+PlotFiles plot_run(const std::string& folder, const std::vector<LocalizationRow>& rows, const LocalizationSummary& summary,
+                   GrayView map, double metres_per_pixel, const std::string& title);
+
+}  // namespace trn::filter
