@@ -11,5 +11,7 @@ void add_demo_command(CLI::App& app);
 void add_frames_command(CLI::App& app);    // cmd_frames.cpp   (energy frame runner)
 void add_energy_command(CLI::App& app);    // cmd_energy.cpp   (energy harness)
 void add_simulate_command(CLI::App& app);  // cmd_simulate.cpp (flight simulator)
+void add_check_command(CLI::App& app);     // cmd_check.cpp    (cross-backend scoring table)
+void add_localize_command(CLI::App& app);  // cmd_localize.cpp (DPC-PFL on an AIR folder)
 
 }  // namespace trn::cli

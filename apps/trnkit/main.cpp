@@ -15,6 +15,8 @@ int main(int argc, char** argv) {
     trn::cli::add_frames_command(app);
     trn::cli::add_energy_command(app);
     trn::cli::add_simulate_command(app);
+    trn::cli::add_check_command(app);
+    trn::cli::add_localize_command(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
