@@ -1,10 +1,9 @@
-// cpu: the fast CPU backend. Threads over particles (scoring) or rows (Sobel); inner loops are
+// cpu: the fast CPU backend. A thread pool over particles (scoring) or rows (Sobel); inner loops are
 // branch-free so the compiler vectorizes them; sums are float within a template row and double
 // across rows, which keeps NCC within 1e-6 of the double reference on 640x480 templates.
 #include "cpu_backend.hpp"
 #include "ncc_rows.hpp"
-
-#include <omp.h>
+#include "thread_pool.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -72,12 +71,17 @@ bool simd_enabled() {
     return cpu::avx2_available() && !(env && std::string(env) == "off");
 }
 
+// Hardware threads unless TRN_CPU_THREADS says otherwise.
+int thread_count() {
+    if (const char* env = std::getenv("TRN_CPU_THREADS"); env && std::atoi(env) > 0) return std::atoi(env);
+    return std::max(1u, std::thread::hardware_concurrency());
+}
+
 class CpuBackend final : public Backend {
 public:
     CpuBackend() {
-        const int threads = omp_get_max_threads();
-        info_ = {"cpu", "cpu", "optimized C++ (OpenMP)", "cpu", "trnkit",
-                 std::to_string(threads) + " threads, " + std::to_string(std::thread::hardware_concurrency()) +
+ info_ = {"cpu", "cpu", "optimized C++ (thread pool)", "cpu", "trnkit",
+                 std::to_string(pool_.threads()) + " threads (TRN_CPU_THREADS), " + std::to_string(std::thread::hardware_concurrency()) +
                      " hardware threads, dense rows " + (use_avx2_ ? "AVX2" : "portable") + " (TRN_CPU_SIMD=off forces portable)"};
     }
     const DeviceInfo& info() const override { return info_; }
@@ -95,9 +99,9 @@ protected:
         const auto t0 = Clock::now();
         const CpuMap& map = static_cast<const CpuMap&>(storage);
         prepare_offsets(plan);
-        const long n = static_cast<long>(poses.size());
-#pragma omp parallel for schedule(dynamic, 4)
-        for (long p = 0; p < n; ++p) out[p] = score_one(map, plan, poses[p]);
+        pool_.parallel_for(static_cast<std::int64_t>(poses.size()), 2, [&](std::int64_t begin, std::int64_t end) {
+            for (std::int64_t p = begin; p < end; ++p) out[p] = score_one(map, plan, poses[p]);
+        });
         if (times) times->execute_ms = ms_since(t0);
     }
 
@@ -164,17 +168,32 @@ private:
 
     DeviceInfo info_;
     bool use_avx2_ = simd_enabled();
+    cpu::ThreadPool pool_{thread_count()};
     std::vector<float> du_, dv_;
 };
+
+// Interior pixels of one output row from three source rows; restrict lets the compiler vectorize
+// (u8 pointers may otherwise alias the outputs).
+void sobel_row_interior(const std::uint8_t* __restrict r0, const std::uint8_t* __restrict r1, const std::uint8_t* __restrict r2,
+                        std::int16_t* __restrict ox, std::int16_t* __restrict oy, int w) {
+    for (int x = 1; x < w - 1; ++x) {
+        const std::int16_t a0 = r0[x - 1], a1 = r0[x], a2 = r0[x + 1];
+        const std::int16_t b0 = r1[x - 1], b2 = r1[x + 1];
+        const std::int16_t c0 = r2[x - 1], c1 = r2[x], c2 = r2[x + 1];
+        ox[x] = std::int16_t((a2 - a0) + 2 * (b2 - b0) + (c2 - c0));
+        oy[x] = std::int16_t((c0 + 2 * c1 + c2) - (a0 + 2 * a1 + a2));
+    }
+}
 
 // Both gradients in one pass over the source: each output row reads three source rows.
 void CpuBackend::do_sobel(GrayView src, Int16View gx, Int16View gy, PhaseTimes* times) {
     const auto t0 = Clock::now();
     const int w = src.width, h = src.height;
     auto reflect = [](int i, int n) { return n == 1 ? 0 : i < 0 ? -i : i >= n ? 2 * n - 2 - i : i; };
-    const bool parallel = std::int64_t(w) * h >= 64 * 1024;
-#pragma omp parallel for schedule(static) if (parallel)
-    for (int y = 0; y < h; ++y) {
+    // Rows in chunks of about 64K pixels: small images stay on the calling thread.
+    const std::int64_t rows_per_chunk = std::max<std::int64_t>(1, (64 * 1024) / w);
+    pool_.parallel_for(h, rows_per_chunk, [&](std::int64_t y0, std::int64_t y1) {
+    for (int y = int(y0); y < int(y1); ++y) {
         const std::uint8_t* r0 = src.row(reflect(y - 1, h));
         const std::uint8_t* r1 = src.row(y);
         const std::uint8_t* r2 = src.row(reflect(y + 1, h));
@@ -186,15 +205,10 @@ void CpuBackend::do_sobel(GrayView src, Int16View gx, Int16View gy, PhaseTimes* 
             oy[x] = std::int16_t((r2[xl] + 2 * r2[x] + r2[xr]) - (r0[xl] + 2 * r0[x] + r0[xr]));
         };
         at(0);
-        for (int x = 1; x < w - 1; ++x) {
-            const std::int16_t a0 = r0[x - 1], a1 = r0[x], a2 = r0[x + 1];
-            const std::int16_t b0 = r1[x - 1], b2 = r1[x + 1];
-            const std::int16_t c0 = r2[x - 1], c1 = r2[x], c2 = r2[x + 1];
-            ox[x] = std::int16_t((a2 - a0) + 2 * (b2 - b0) + (c2 - c0));
-            oy[x] = std::int16_t((c0 + 2 * c1 + c2) - (a0 + 2 * a1 + a2));
-        }
+        sobel_row_interior(r0, r1, r2, ox, oy, w);
         if (w > 1) at(w - 1);
     }
+    });
     if (times) times->execute_ms = ms_since(t0);
 }
 
