@@ -25,12 +25,13 @@ void VulkanBackend::do_sobel(GrayView src, Int16View gx, Int16View gy, PhaseTime
     const auto& lim = ctx.limits();
     const std::size_t w = static_cast<std::size_t>(src.width), h = static_cast<std::size_t>(src.height);
     const std::size_t src_pitch = (w + 3) & ~std::size_t(3);  // bytes per uploaded row
-    const std::size_t out_words = (w + 1) / 2;                 // two int16 per word
+    const std::size_t quads = (w + 3) / 4;                     // one invocation per 4 output pixels
+    const std::size_t out_words = 2 * quads;                   // two int16 per word
     const std::size_t range = lim.maxStorageBufferRange;
     std::size_t band = std::min({h, std::max<std::size_t>(1, kBandPixels / w), range / src_pitch - 2,
                                  range / (out_words * 4), std::size_t(lim.maxComputeWorkGroupCount[1]) * sobel_group_y_});
     if (band == 0 || range / src_pitch < 3) throw Error("sobel: image rows of " + std::to_string(w) + " pixels are too wide for " + info_.name);
-    const std::uint32_t groups_x = static_cast<std::uint32_t>((out_words + sobel_group_x_ - 1) / sobel_group_x_);
+    const std::uint32_t groups_x = static_cast<std::uint32_t>((quads + sobel_group_x_ - 1) / sobel_group_x_);
     if (groups_x > lim.maxComputeWorkGroupCount[0])
         throw Error("sobel: image width " + std::to_string(w) + " exceeds what one dispatch on " + info_.name + " covers");
 

@@ -2,8 +2,9 @@
 // 3x3 Sobel (cv::Sobel CV_16S, ksize 3, BORDER_REFLECT_101) of one band of rows.
 //
 // The host uploads the band's rows with one reflected row above and below (rows -1 and h map by
-// reflect-101 on the host), so this shader only reflects columns. Each invocation writes two
-// horizontally adjacent pixels as one 32-bit word of two int16 values (no 16-bit storage needed).
+// reflect-101 on the host), so this shader only reflects columns. Each invocation writes four
+// horizontally adjacent pixels as two 32-bit words of int16 pairs (no 16-bit storage needed);
+// away from the left/right borders it reads the 6 source columns it needs as 3 aligned words per row.
 #extension GL_GOOGLE_include_directive : require
 #include "map_access.glsl"
 
@@ -19,39 +20,56 @@ layout(push_constant) uniform Push {
     uint width;
     uint rows;       // output rows in this band
     uint src_pitch;  // bytes per uploaded source row (multiple of 4)
-    uint out_pitch;  // words per output row = ceil(width / 2)
+    uint out_pitch;  // words per output row = 2 * ceil(width / 4)
 } pc;
 
-// reflect-101: -1 -> 1, width -> width-2; a single column maps every index to 0.
+// reflect-101: -1 -> 1, width -> width-2; a single column maps every index to 0. Columns past the
+// image (only in the last, partial quad, whose extra outputs the host ignores) are clamped.
 uint reflect_column(int x) {
     int w = int(pc.width);
     if (w == 1) return 0u;
-    if (x < 0) return uint(-x);
-    if (x >= w) return uint(2 * w - 2 - x);
-    return uint(x);
+    if (x < 0) x = -x;
+    if (x >= w) x = 2 * w - 2 - x;
+    return uint(clamp(x, 0, w - 1));
 }
 
-int pixel(uint row, uint x) { return int(TRN_BYTE_OF(src, row * pc.src_pitch + x)); }
-
-// Gx and Gy at column x of output row y (source rows y, y+1, y+2 of the band).
-ivec2 sobel_at(uint y, int x) {
-    uint xl = reflect_column(x - 1), xc = uint(x), xr = reflect_column(x + 1);
-    int a0 = pixel(y, xl), a1 = pixel(y, xc), a2 = pixel(y, xr);
-    int b0 = pixel(y + 1u, xl), b2 = pixel(y + 1u, xr);
-    int c0 = pixel(y + 2u, xl), c1 = pixel(y + 2u, xc), c2 = pixel(y + 2u, xr);
-    int gxv = (a2 - a0) + 2 * (b2 - b0) + (c2 - c0);
-    int gyv = (c0 + 2 * c1 + c2) - (a0 + 2 * a1 + a2);
-    return ivec2(gxv, gyv);
+// Source columns x0-1 .. x0+4 of band row `row`.
+void load_columns(uint row, int x0, bool interior, out int p[6]) {
+    uint base = row * pc.src_pitch;
+    if (interior) {
+        uint w = (base + uint(x0)) >> 2u;
+        uint left = src[w - 1u], mid = src[w], right = src[w + 1u];
+        p[0] = int(left >> 24u);
+        p[1] = int(mid & 0xFFu);
+        p[2] = int((mid >> 8u) & 0xFFu);
+        p[3] = int((mid >> 16u) & 0xFFu);
+        p[4] = int(mid >> 24u);
+        p[5] = int(right & 0xFFu);
+    } else {
+        for (int i = 0; i < 6; ++i) p[i] = int(TRN_BYTE_OF(src, base + reflect_column(x0 - 1 + i)));
+    }
 }
+
+uint pack(int lo, int hi) { return (uint(lo) & 0xFFFFu) | (uint(hi) << 16u); }
 
 void main() {
-    uint word = gl_GlobalInvocationID.x;
+    uint quad = gl_GlobalInvocationID.x;
     uint y = gl_GlobalInvocationID.y;
-    if (word >= pc.out_pitch || y >= pc.rows) return;
-    int x = int(2u * word);
-    ivec2 g0 = sobel_at(y, x);
-    ivec2 g1 = x + 1 < int(pc.width) ? sobel_at(y, x + 1) : ivec2(0);
-    uint o = y * pc.out_pitch + word;
-    gx[o] = (uint(g0.x) & 0xFFFFu) | (uint(g1.x) << 16u);
-    gy[o] = (uint(g0.y) & 0xFFFFu) | (uint(g1.y) << 16u);
+    if (2u * quad >= pc.out_pitch || y >= pc.rows) return;
+    int x0 = int(4u * quad);
+    bool interior = x0 >= 1 && x0 + 4 <= int(pc.width) - 1;
+    int a[6], b[6], c[6];
+    load_columns(y, x0, interior, a);
+    load_columns(y + 1u, x0, interior, b);
+    load_columns(y + 2u, x0, interior, c);
+    int ox[4], oy[4];
+    for (int i = 0; i < 4; ++i) {
+        ox[i] = (a[i + 2] - a[i]) + 2 * (b[i + 2] - b[i]) + (c[i + 2] - c[i]);
+        oy[i] = (c[i] + 2 * c[i + 1] + c[i + 2]) - (a[i] + 2 * a[i + 1] + a[i + 2]);
+    }
+    uint o = y * pc.out_pitch + 2u * quad;
+    gx[o] = pack(ox[0], ox[1]);
+    gx[o + 1u] = pack(ox[2], ox[3]);
+    gy[o] = pack(oy[0], oy[1]);
+    gy[o + 1u] = pack(oy[2], oy[3]);
 }
