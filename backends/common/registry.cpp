@@ -80,10 +80,11 @@ std::unique_ptr<Backend> BackendRegistry::create(std::string_view spec) const {
     } else {
         const std::string needle = lower(selector);
         for (std::size_t i = 0; i < devices.size() && index < 0; ++i)
-            if (lower(devices[i].device).find(needle) != std::string::npos || lower(devices[i].name) == needle)
+            if (lower(devices[i].device).find(needle) != std::string::npos || lower(devices[i].driver).find(needle) != std::string::npos ||
+                lower(devices[i].name) == needle)
                 index = static_cast<int>(i);
         if (index < 0)
-            throw BackendUnavailable("backend '" + std::string(spec) + "': no " + family_name + " device name contains '" +
+            throw BackendUnavailable("backend '" + std::string(spec) + "': no " + family_name + " device name or driver contains '" +
                                      selector + "'");
     }
     return it->create(index);

@@ -40,7 +40,7 @@ TEST(Registry, RefusesClearlyAndNeverFallsBack) {
     };
     EXPECT_NE(message("cuda").find("not built into this trnkit"), std::string::npos);
     EXPECT_NE(message("cpu:3").find("out of range"), std::string::npos);
-    EXPECT_NE(message("cpu:nosuch").find("no cpu device name contains 'nosuch'"), std::string::npos);
+    EXPECT_NE(message("cpu:nosuch").find("no cpu device name or driver contains 'nosuch'"), std::string::npos);
 }
 
 // Device choice through the family's environment variable, on a registry of two real cpu backends.

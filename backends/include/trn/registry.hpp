@@ -40,8 +40,8 @@ public:
     std::vector<std::string> available() const;
 
     // Creates a backend from a spec: "cpu", "opencl" (the device in $TRN_OPENCL_DEVICE, else
-    // device 0), "opencl:1" (by index) or "opencl:pocl" (first device whose name contains the
-    // text, case-insensitive). Throws BackendUnavailable, saying why, when it cannot: it never
+    // device 0), "opencl:1" (by index) or "opencl:pocl" (first device whose device or driver name
+    // contains the text, case-insensitive). Throws BackendUnavailable, saying why, when it cannot: it never
     // falls back to another backend.
     std::unique_ptr<Backend> create(std::string_view spec) const;
 
