@@ -1,5 +1,5 @@
 // Writes the sample images of docs/SIMULATOR.md: procedural maps of both styles, an aged map and
-// camera frames. Usage: trn_sim_samples OUT_DIR. Not a test; kept so the samples can be remade.
+// camera frames. Usage: trn_sim_samples OUT_DIR [.jpg|.png] or trn_sim_samples --time EDGE_M. Not a test; kept so the samples can be remade.
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
         return 0;
     }
     const std::string out = argc > 1 ? argv[1] : ".";
+    const std::string ext = argc > 2 ? argv[2] : ".jpg";  // .png for lossless samples
     std::filesystem::create_directories(out);
     for (TerrainStyle style : {TerrainStyle::Forest, TerrainStyle::Urban}) {
         for (int year : {2008, 2014}) {
@@ -33,21 +34,25 @@ int main(int argc, char** argv) {
             o.style = style;
             o.seed = 7;
             o.year = year;
-            o.width_m = o.height_m = 1024;
+            o.width_m = o.height_m = 1280;  // overview: 1.28 km at 2 m/px
+            o.metres_per_pixel = 2;
             const auto t0 = std::chrono::steady_clock::now();
             const Map map = generate_procedural_map(o);
             const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
             std::printf("%s %d: %dx%d in %.2f s\n", to_string(style), year, map.image.width, map.image.height, s);
             const std::string name = out + "/procedural_" + to_string(style) + "_" + std::to_string(year);
-            trn::save_gray(name + ".png", map.image.view());
-            // A closer look: 256 m at 0.25 m/px.
+            trn::save_gray(name + ext, map.image.view());
+            if (year != 2008) continue;
+            // A closer look: 160 m at 0.25 m/px.
             o.metres_per_pixel = 0.25;
-            const trn::GrayImage zoom = generate_procedural_region(o, 1600, 1600, 1024, 1024);
-            trn::save_gray(name + "_zoom.png", zoom.view());
-            if (year == 2008) {
-                CameraPose pose{512, 512, 200, 0.5, 0, 0};
-                trn::save_gray(out + "/frame_" + to_string(style) + ".png", render_frame(map, Camera{}, pose).view());
-            }
+            const trn::GrayImage zoom = generate_procedural_region(o, 1000, 1000, 640, 640);
+            trn::save_gray(name + "_zoom" + ext, zoom.view());
+            // A camera frame at 200 m over the same place, from the 1 m/px map.
+            o.metres_per_pixel = 1;
+            o.width_m = o.height_m = 800;
+            const Map fine = generate_procedural_map(o);
+            const CameraPose pose{400, 400, 200, 0.5, 0, 0};
+            trn::save_gray(out + "/frame_" + to_string(style) + ext, render_frame(fine, Camera{}, pose).view());
         }
     }
     return 0;
