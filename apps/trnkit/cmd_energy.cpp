@@ -1,5 +1,6 @@
 // `trnkit energy ...`: the energy harness. Built so far: `inspect` (parse a power log and report
-// its sampling hygiene) and `integrate-span` (energy of one time span of a log).
+// its sampling hygiene) and `integrate-span` (energy of one time span of a log); integrate,
+// compare and sample live in cmd_energy_*.cpp.
 #include <cstdio>
 #include <iostream>
 
@@ -10,8 +11,13 @@
 
 namespace trn::cli {
 
+// Further `energy` subcommands, each in its own cmd_energy_*.cpp.
+void add_energy_integrate_command(CLI::App* energy);
+void add_energy_compare_command(CLI::App* energy);
+void add_energy_sample_command(CLI::App* energy);
+
 void add_energy_command(CLI::App& app) {
-    auto* energy = app.add_subcommand("energy", "Power logs -> joules (inspect, integrate-span)");
+    auto* energy = app.add_subcommand("energy", "Power logs -> joules (inspect, integrate-span, integrate, compare, sample)");
     energy->require_subcommand(1);
     struct Args {
         std::string log, format = "auto";
@@ -49,6 +55,9 @@ void add_energy_command(CLI::App& app) {
         if (!e.covered) throw trn::Error(a->log + ": the span [" + std::to_string(a->start) + ", " + std::to_string(a->end) + "] s is not covered by the log");
         std::printf("%.9g J +- %.3g J (%zu samples inside)\n", e.energy_j, e.error_j, e.samples);
     });
+    add_energy_integrate_command(energy);
+    add_energy_compare_command(energy);
+    add_energy_sample_command(energy);
 }
 
 }  // namespace trn::cli

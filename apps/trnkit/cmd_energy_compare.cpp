@@ -1,0 +1,61 @@
+// `trnkit energy compare A.json B.json ...`: the dissertation's three tables (Markdown + CSV),
+// a summary JSON with provenance, and gnuplot figures (histograms with the mean, box plots).
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+#include "commands.hpp"
+#include "trn/energy/compare.hpp"
+#include "trn/energy/plots.hpp"
+#include "trn/error.hpp"
+
+namespace trn::cli {
+namespace {
+
+void write_file(const std::string& path, const std::string& text) {
+    std::ofstream f(path, std::ios::binary);
+    if (!f || !(f << text)) throw Error(path + ": cannot write");
+}
+
+}  // namespace
+
+void add_energy_compare_command(CLI::App* energy) {
+    struct Args {
+        std::vector<std::string> runs;
+        std::string out = "energy-compare", energy = "net";
+        bool student = false, no_plots = false;
+    };
+    auto a = std::make_shared<Args>();
+    auto* c = energy->add_subcommand("compare", "Compare platforms from run reports of `energy integrate`: tables, summary JSON, plots");
+    c->add_option("runs", a->runs, "Run report JSON files (runs with the same platform label are pooled)")->required();
+    c->add_option("-o,--out", a->out, "Output folder (created if missing)")->capture_default_str();
+    c->add_option("--energy", a->energy, "net (above idle) or gross energy")->capture_default_str()->check(CLI::IsMember({"net", "gross"}));
+    c->add_flag("--student", a->student, "Student's t-test (equal variances) instead of Welch's");
+    c->add_flag("--no-plots", a->no_plots, "Skip the gnuplot figures");
+    c->callback([a] {
+        energy::CompareOptions o;
+        o.student = a->student, o.net = a->energy == "net";
+        const auto cmp = energy::compare_files(a->runs, o);
+        std::error_code ec;
+        std::filesystem::create_directories(a->out, ec);
+        if (ec) throw Error(a->out + ": cannot create folder (" + ec.message() + ")");
+        const std::string md = energy::tables_markdown(cmp);
+        write_file(a->out + "/tables.md", md);
+        write_file(a->out + "/table1_energy.csv", energy::energy_table_csv(cmp));
+        write_file(a->out + "/table2_shapiro_wilk.csv", energy::shapiro_table_csv(cmp));
+        write_file(a->out + "/table3_t_tests.csv", energy::ttest_table_csv(cmp));
+        write_file(a->out + "/summary.json", energy::comparison_json(cmp));
+        std::cout << md << "\nwrote " << a->out << "/{tables.md,table1_energy.csv,table2_shapiro_wilk.csv,table3_t_tests.csv,summary.json}\n";
+        if (a->no_plots) return;
+        std::vector<energy::PlotSeries> e, t;
+        for (const auto& p : cmp.platforms) e.push_back({p.name, p.energy_mj}), t.push_back({p.name, p.frame_ms});
+        const std::string unit = std::string(o.net ? "net" : "gross") + " energy per frame (mJ)";
+        energy::plot_histograms(e, a->out + "/energy_histograms.png", unit);
+        energy::plot_boxes(e, a->out + "/energy_boxplot.png", unit);
+        energy::plot_boxes(t, a->out + "/frame_time_boxplot.png", "frame time (ms)");
+        std::cout << "plots: " << a->out << "/{energy_histograms,energy_boxplot,frame_time_boxplot}.png\n";
+    });
+}
+
+}  // namespace trn::cli

@@ -1,0 +1,194 @@
+#include "trn/energy/run_report.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "sha256.hpp"
+#include "trn/error.hpp"
+
+namespace trn::energy {
+namespace {
+
+using nlohmann::json;
+
+std::string default_platform(const MarkerFile& m) {
+    auto get = [&](const char* k) {
+        const auto it = m.meta.find(k);
+        return it == m.meta.end() ? std::string() : it->second;
+    };
+    std::string p = get("backend").empty() ? "run" : get("backend");
+    if (!get("kernel").empty()) p += "/" + get("kernel");
+    if (!get("size").empty() && get("kernel") == "sobel") p += "/" + get("size");
+    if (!get("particles").empty() && get("kernel") == "ncc") p += "/" + get("particles");
+    return p;
+}
+
+std::string read_text(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error(path + ": cannot open");
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+// JSON has no NaN: a non-finite number would be a bug upstream, so refuse to write it.
+double finite(double v, const char* what) {
+    if (!std::isfinite(v)) throw Error(std::string("run report: ") + what + " is not finite");
+    return v;
+}
+
+}  // namespace
+
+RunReport integrate_run(const PowerTrace& trace, const MarkerFile& markers, const IntegrateRequest& q) {
+    validate_trace(trace);
+    RunReport r;
+    r.platform = q.platform.empty() ? default_platform(markers) : q.platform;
+    r.log_format = trace.format, r.log_quantity = trace.quantity, r.log_notes = trace.notes;
+    r.sampling = describe_sampling(trace);
+    r.resolution_w = trace.resolution_w;
+    r.marker_meta = markers.meta;
+    r.rule = q.integration.rule == Rule::Hold ? "hold" : "trapezoid";
+    r.clock = q.realtime ? "realtime" : "monotonic";
+    r.min_samples = q.integration.min_samples;
+    ClockMapping mapping;
+    mapping.realtime = q.realtime;
+    switch (q.align) {
+        case AlignMode::SameClock:
+            r.align_mode = "same-clock";
+            if (q.realtime && !trace.wall_clock)
+                throw Error(trace.source + ": its times are relative (not UNIX time), so they cannot be matched to CLOCK_REALTIME markers: give an offset or use automatic alignment");
+            break;
+        case AlignMode::Offset:
+            r.align_mode = "offset";
+            mapping.offset_s = q.offset_s;
+            break;
+        case AlignMode::Auto: {
+            r.align_mode = "auto";
+            AlignOptions ao;
+            ao.realtime = q.realtime, ao.guess_s = q.offset_s, ao.search_s = q.search_s;
+            r.alignment = align_auto(trace, markers, ao);
+            mapping = r.alignment.mapping;
+            break;
+        }
+    }
+    r.alignment.mapping = mapping;
+    const RunEnergy run = integrate_frames(trace, marker_intervals(markers, mapping), q.integration);
+    r.shift = shift_sensitivity(trace, markers, mapping, q.integration);
+    r.idle_w = run.idle_w, r.idle_first_w = run.idle_first_w, r.idle_last_w = run.idle_last_w, r.idle_segments = run.idle_segments;
+    r.warnings = run.warnings;
+    std::map<int, const FrameMarker*> by_id;
+    for (const auto& m : markers.rows)
+        if (m.kind == "frame") by_id[m.id] = &m;
+    for (const auto& f : run.frames) {
+        ReportFrame rf;
+        rf.energy = f;
+        if (const auto it = by_id.find(f.id); it != by_id.end()) {
+            const FrameMarker& m = *it->second;
+            rf.write_ms = m.write_ms, rf.exec_ms = m.exec_ms, rf.read_ms = m.read_ms;
+            rf.marker_ms = ((q.realtime ? m.real_end_ns - m.real_start_ns : m.mono_end_ns - m.mono_start_ns)) * 1e-6;
+        }
+        r.frames.push_back(rf);
+    }
+    return r;
+}
+
+RunReport integrate_files(const std::string& log_path, const std::string& format, const ParseOptions& opts, const std::string& markers_path,
+                          const IntegrateRequest& q) {
+    const std::string log_text = read_text(log_path), marker_text = read_text(markers_path);
+    const PowerTrace trace = parse_power_log(log_text, log_path, format, opts);
+    const MarkerFile markers = parse_markers(marker_text, markers_path);
+    RunReport r = integrate_run(trace, markers, q);
+    r.log_path = log_path, r.markers_path = markers_path;
+    r.log_sha256 = sha256_hex(log_text), r.markers_sha256 = sha256_hex(marker_text);
+    r.parse_options = opts;
+    return r;
+}
+
+std::string run_report_json(const RunReport& r) {
+    json j;
+    j["trnkit_energy_run"] = 1;
+    j["platform"] = r.platform;
+    j["inputs"]["log"] = {{"path", r.log_path}, {"sha256", r.log_sha256}, {"format", r.log_format}, {"quantity", r.log_quantity},
+                          {"samples", r.sampling.samples}, {"rate_hz", r.sampling.rate_hz}, {"gaps", r.sampling.gaps},
+                          {"resolution_w", r.resolution_w}, {"notes", r.log_notes}, {"parse_options", r.parse_options}};
+    j["inputs"]["markers"] = {{"path", r.markers_path}, {"sha256", r.markers_sha256}, {"meta", r.marker_meta}};
+    j["config"] = {{"rule", r.rule}, {"clock", r.clock}, {"align", r.align_mode}, {"min_samples", r.min_samples}};
+    const auto& a = r.alignment;
+    j["alignment"] = {{"offset_s", finite(a.mapping.offset_s, "offset")}, {"drift", finite(a.mapping.drift, "drift")}, {"ref_s", a.mapping.ref_s},
+                      {"residual_s", a.residual_s}, {"contrast_w", a.contrast_w}, {"window_time_s", a.window_time_s},
+                      {"window_offset_s", a.window_offset_s}, {"shift_dt_s", r.shift.dt_s}, {"shift_minus_relative", r.shift.relative_minus},
+                      {"shift_plus_relative", r.shift.relative_plus}};
+    j["idle"] = {{"w", r.idle_w}, {"first_w", r.idle_first_w}, {"last_w", r.idle_last_w}, {"segments", r.idle_segments}};
+    j["warnings"] = r.warnings;
+    json frames = json::array();
+    for (const auto& f : r.frames) {
+        const auto& e = f.energy;
+        frames.push_back({{"id", e.id}, {"start_s", e.start}, {"end_s", e.end}, {"gross_j", finite(e.gross_j, "gross energy")},
+                          {"net_j", finite(e.net_j, "net energy")}, {"error_j", finite(e.error_j, "error bound")}, {"samples", e.samples},
+                          {"flag", e.flag}, {"marker_ms", f.marker_ms}, {"write_ms", f.write_ms}, {"exec_ms", f.exec_ms}, {"read_ms", f.read_ms}});
+    }
+    j["frames"] = frames;
+    return j.dump(1) + "\n";
+}
+
+std::string run_report_csv(const RunReport& r) {
+    std::ostringstream os;
+    os << "id,start_s,end_s,gross_j,net_j,error_j,samples,flag,marker_ms,write_ms,exec_ms,read_ms\n";
+    char buf[512];
+    for (const auto& f : r.frames) {
+        const auto& e = f.energy;
+        std::snprintf(buf, sizeof buf, "%d,%.9f,%.9f,%.9g,%.9g,%.3g,%zu,\"%s\",%.6f,%.6f,%.6f,%.6f\n", e.id, e.start, e.end, e.gross_j, e.net_j, e.error_j,
+                      e.samples, e.flag.c_str(), f.marker_ms, f.write_ms, f.exec_ms, f.read_ms);
+        os << buf;
+    }
+    return os.str();
+}
+
+RunReport parse_run_report_json(const std::string& text, const std::string& name) {
+    json j;
+    try {
+        j = json::parse(text);
+    } catch (const json::exception& e) {
+        throw Error(name + ": not JSON (" + e.what() + ")");
+    }
+    RunReport r;
+    try {
+        if (j.value("trnkit_energy_run", 0) != 1) throw Error(name + ": not a run report (expected \"trnkit_energy_run\": 1, written by trnkit energy integrate)");
+        r.platform = j.at("platform").get<std::string>();
+        const auto& log = j.at("inputs").at("log");
+        r.log_path = log.at("path"), r.log_sha256 = log.at("sha256"), r.log_format = log.at("format"), r.log_quantity = log.at("quantity");
+        r.sampling.samples = log.at("samples"), r.sampling.rate_hz = log.at("rate_hz"), r.resolution_w = log.at("resolution_w");
+        r.log_notes = log.at("notes").get<std::vector<std::string>>();
+        r.parse_options = log.at("parse_options").get<std::map<std::string, std::string>>();
+        const auto& mk = j.at("inputs").at("markers");
+        r.markers_path = mk.at("path"), r.markers_sha256 = mk.at("sha256");
+        r.marker_meta = mk.at("meta").get<std::map<std::string, std::string>>();
+        const auto& c = j.at("config");
+        r.rule = c.at("rule"), r.clock = c.at("clock"), r.align_mode = c.at("align"), r.min_samples = c.at("min_samples");
+        const auto& a = j.at("alignment");
+        r.alignment.mapping.offset_s = a.at("offset_s"), r.alignment.mapping.drift = a.at("drift"), r.alignment.mapping.ref_s = a.at("ref_s");
+        r.alignment.residual_s = a.at("residual_s"), r.alignment.contrast_w = a.at("contrast_w");
+        r.shift.dt_s = a.at("shift_dt_s"), r.shift.relative_minus = a.at("shift_minus_relative"), r.shift.relative_plus = a.at("shift_plus_relative");
+        const auto& idle = j.at("idle");
+        r.idle_w = idle.at("w"), r.idle_first_w = idle.at("first_w"), r.idle_last_w = idle.at("last_w"), r.idle_segments = idle.at("segments");
+        r.warnings = j.at("warnings").get<std::vector<std::string>>();
+        for (const auto& f : j.at("frames")) {
+            ReportFrame rf;
+            auto& e = rf.energy;
+            e.id = f.at("id"), e.start = f.at("start_s"), e.end = f.at("end_s"), e.gross_j = f.at("gross_j"), e.net_j = f.at("net_j");
+            e.error_j = f.at("error_j"), e.samples = f.at("samples"), e.flag = f.at("flag");
+            rf.marker_ms = f.at("marker_ms"), rf.write_ms = f.at("write_ms"), rf.exec_ms = f.at("exec_ms"), rf.read_ms = f.at("read_ms");
+            r.frames.push_back(rf);
+        }
+    } catch (const json::exception& e) {
+        throw Error(name + ": run report field missing or of the wrong type (" + e.what() + ")");
+    }
+    return r;
+}
+
+RunReport read_run_report(const std::string& path) { return parse_run_report_json(read_text(path), path); }
+
+}  // namespace trn::energy

@@ -1,0 +1,11 @@
+#pragma once
+// SHA-256 (FIPS 180-4) of a byte string as lowercase hex: the input hashes in reports'
+// provenance, so a reader can tell which log produced which numbers.
+#include <string>
+#include <string_view>
+
+namespace trn::energy {
+std::string sha256_hex(std::string_view data);
+// Hash of a file's bytes; throws trn::Error when it cannot be read.
+std::string sha256_file(const std::string& path);
+}  // namespace trn::energy
