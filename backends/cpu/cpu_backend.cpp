@@ -82,7 +82,7 @@ public:
     CpuBackend() {
  info_ = {"cpu", "cpu", "optimized C++ (thread pool)", "cpu", "trnkit",
                  std::to_string(pool_.threads()) + " threads (TRN_CPU_THREADS), " + std::to_string(std::thread::hardware_concurrency()) +
-                     " hardware threads, dense rows " + (use_avx2_ ? "AVX2" : "portable") + " (TRN_CPU_SIMD=off forces portable)"};
+                     " hardware threads, inner loop " + (use_avx2_ ? "AVX2" : "portable") + " (TRN_CPU_SIMD=off forces portable)"};
     }
     const DeviceInfo& info() const override { return info_; }
 
@@ -132,7 +132,7 @@ private:
         const float shift = static_cast<float>(sums.shift);
         const cpu::MapPixels pixels = map.view();
         const bool inside = patch_inside(map, A, plan);
-        const bool vector = inside && use_avx2_ && plan.dense && std::int64_t(map.stride) * map.height() < (std::int64_t(1) << 31);
+        const bool vector = inside && use_avx2_ && std::int64_t(map.stride) * map.height() < (std::int64_t(1) << 31);
         auto add = [&](const cpu::RowInput& row) {
             const cpu::RowSums r = vector   ? cpu::sample_row_inside_avx2(pixels, row, shift)
                                    : inside ? cpu::sample_row_inside(pixels, row, shift)
@@ -140,6 +140,17 @@ private:
             sums.n += r.n, sums.sj += r.sj, sums.sjj += r.sjj, sums.sjt += r.sjt, sums.st += r.st, sums.stt += r.stt;
         };
         const std::size_t count = du_.size();
+        constexpr int kChunk = 512;  // sparse: float sums over short runs, double across them
+        const int total = static_cast<int>(count);
+        if (!plan.dense && vector) {  // positions computed in registers, nothing precomputed
+            for (int k = 0; k < total; k += kChunk) {
+                cpu::RowInput row{nullptr, nullptr, 0, 0, nullptr, nullptr, plan.centered.data() + k, std::min(kChunk, total - k)};
+                row.du = du_.data() + k, row.dv = dv_.data() + k;
+                row.a = A.a, row.b = A.b, row.c = A.c, row.d = A.d, row.tx = A.tx, row.ty = A.ty;
+                add(row);
+            }
+            return finalize_score(sums, plan);
+        }
         scratch.reserve(count);
         // The row-invariant half of every position: tx + a*du and ty + c*du.
         for (std::size_t k = 0; k < count; ++k) {
@@ -157,8 +168,6 @@ private:
                 scratch.bdv[k] = A.b * dv_[k];
                 scratch.ddv[k] = A.d * dv_[k];
             }
-            constexpr int kChunk = 512;  // float sums over short runs, double across them
-            const int total = static_cast<int>(count);
             for (int k = 0; k < total; k += kChunk)
                 add({scratch.ax.data() + k, scratch.ay.data() + k, 0, 0, scratch.bdv.data() + k, scratch.ddv.data() + k,
                      plan.centered.data() + k, std::min(kChunk, total - k)});

@@ -26,13 +26,18 @@ struct RowInput {
     const float* ddvs;
     const float* t;     // centred template values
     int count;
+    // Sparse chunks on the AVX2 path: positions straight from du/dv and the affine, in registers
+    // (same operations, same rounding) instead of from precomputed arrays. ax/ay unused then.
+    const float* du = nullptr;
+    const float* dv = nullptr;
+    float a = 0, b = 0, c = 0, d = 0, tx = 0, ty = 0;
 };
 
 // Checked = samples may fall outside the map (masked out); unchecked = all known inside.
 RowSums sample_row_checked(const MapPixels& m, const RowInput& row, float shift);
 RowSums sample_row_inside(const MapPixels& m, const RowInput& row, float shift);
 
-// AVX2 version of sample_row_inside for dense rows (bit-identical sample values; sums in 8 lanes).
+// AVX2 version of sample_row_inside (bit-identical sample values; sums in 8 lanes).
 // Only call when avx2_available() and the map has fewer than 2^31 pixels.
 RowSums sample_row_inside_avx2(const MapPixels& m, const RowInput& row, float shift);
 bool avx2_available();

@@ -3,6 +3,7 @@
 // sample choice (ScoringPlan points), which is part of the contract.
 #include "cpu_ref_backend.hpp"
 
+#include <chrono>
 #include <cmath>
 #include <vector>
 
@@ -38,6 +39,19 @@ bool sample(const RefMap& m, const Affine& A, float du, float dv, float& value) 
     return true;
 }
 
+// Adds the wall time of its scope to *target (when given): the CPU's own clock for PhaseTimes.
+class Timer {
+public:
+    explicit Timer(double* target) : target_(target), start_(std::chrono::steady_clock::now()) {}
+    ~Timer() {
+        if (target_) *target_ += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
+    }
+
+private:
+    double* target_;
+    std::chrono::steady_clock::time_point start_;
+};
+
 class CpuRefBackend final : public Backend {
 public:
     CpuRefBackend() {
@@ -46,10 +60,14 @@ public:
     const DeviceInfo& info() const override { return info_; }
 
 protected:
-    MapHandle do_upload_map(GrayView map, PhaseTimes*) override { return std::make_shared<RefMap>(this, map); }
+    MapHandle do_upload_map(GrayView map, PhaseTimes* times) override {
+        const Timer timer(times ? &times->upload_ms : nullptr);
+        return std::make_shared<RefMap>(this, map);
+    }
 
     void do_score(const MapStorage& storage, const ScoringPlan& plan, std::span<const Pose> poses,
-                  std::span<ParticleScore> out, PhaseTimes*) override {
+                  std::span<ParticleScore> out, PhaseTimes* times) override {
+        const Timer timer(times ? &times->execute_ms : nullptr);
         const RefMap& map = static_cast<const RefMap&>(storage);
         const std::size_t count = plan.sample_count();
         std::vector<double> t, i;
@@ -102,7 +120,8 @@ protected:
         return r;
     }
 
-    void do_sobel(GrayView src, Int16View gx, Int16View gy, PhaseTimes*) override {
+    void do_sobel(GrayView src, Int16View gx, Int16View gy, PhaseTimes* times) override {
+        const Timer timer(times ? &times->execute_ms : nullptr);
         const int w = src.width, h = src.height;
         // Reflect-101 index: -1 -> 1, w -> w-2; a 1-pixel-wide axis maps everything to 0.
         auto reflect = [](int i, int n) {
