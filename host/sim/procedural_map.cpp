@@ -3,8 +3,10 @@
 #include "trn/sim/procedural_map.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "random.hpp"
@@ -440,12 +442,23 @@ GrayImage generate_procedural_region(const ProceduralMapOptions& options, int x0
     const double mpp = options.metres_per_pixel;
     const Scene scene(options, x0 * mpp, y0 * mpp, (x0 + w) * mpp, (y0 + h) * mpp);
     GrayImage img{w, h, std::vector<std::uint8_t>(std::size_t(w) * h)};
-#pragma omp parallel for schedule(dynamic, 8)
-    for (int j = 0; j < h; ++j) {
-        std::uint8_t* row = img.pixels.data() + std::size_t(j) * w;
-        const double y = (y0 + j + 0.5) * mpp;
-        for (int i = 0; i < w; ++i) row[i] = static_cast<std::uint8_t>(std::lround(scene.shade((x0 + i + 0.5) * mpp, y)));
-    }
+    // Rows are independent: a few threads take interleaved bands of rows (no OpenMP: the library
+    // does not link it).
+    const int threads = std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1, std::max(1, h / 16));
+    std::atomic<int> next_band{0};
+    constexpr int kBand = 16;
+    auto work = [&] {
+        for (int b; (b = next_band.fetch_add(1)) * kBand < h;)
+            for (int j = b * kBand; j < std::min(h, (b + 1) * kBand); ++j) {
+                std::uint8_t* row = img.pixels.data() + std::size_t(j) * w;
+                const double y = (y0 + j + 0.5) * mpp;
+                for (int i = 0; i < w; ++i) row[i] = static_cast<std::uint8_t>(std::lround(scene.shade((x0 + i + 0.5) * mpp, y)));
+            }
+    };
+    std::vector<std::thread> pool;
+    for (int t = 1; t < threads; ++t) pool.emplace_back(work);
+    work();
+    for (std::thread& t : pool) t.join();
     return img;
 }
 
