@@ -139,7 +139,9 @@ TEST(VulkanScore, RepeatedCallsAreBitIdenticalAcrossGrowingBatches) {
     dut->score(handle, templ.view(), poses, {}, again, nullptr);
     for (std::size_t i = 0; i < poses.size(); ++i) {
         EXPECT_EQ(std::memcmp(&first[i], &again[i], sizeof(ParticleScore)), 0) << i;
-        if (i < small.size()) EXPECT_EQ(std::memcmp(&first[i], &small[i], sizeof(ParticleScore)), 0) << i;
+        if (i < small.size()) {
+            EXPECT_EQ(std::memcmp(&first[i], &small[i], sizeof(ParticleScore)), 0) << i;
+        }
     }
 }
 
