@@ -13,8 +13,8 @@ packages=(
   opencl-headers ocl-icd-opencl-dev pocl-opencl-icd clinfo
   # Vulkan: loader, lavapipe (CPU device), GLSL -> SPIR-V compiler, validation layer
   libvulkan-dev mesa-vulkan-drivers glslang-tools vulkan-validationlayers vulkan-tools
-  # fuzzing (libFuzzer via clang) and plots
-  clang libclang-rt-14-dev gnuplot-nox
+  # fuzzing (libFuzzer via clang), plots, and the benchmark report script
+  clang libclang-rt-14-dev gnuplot-nox python3
 )
 
 missing=()
