@@ -22,7 +22,8 @@ namespace {
 
 struct DemoArgs {
     std::string scenario = "FR-200", backend = "fastest", out;
-    double distance_km = 2.0, rate_hz = 5;
+    double distance_km = 2.0, rate_hz = 5, sparse = 1;
+    int template_width = 160;
     int map_year = 2008, flight_year = 2010;
     std::uint64_t seed = 1;
     bool no_plots = false;
@@ -80,7 +81,10 @@ void demo(const DemoArgs& a) {
     const std::size_t stride = std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(preset.fps / a.rate_hz)));
     filter::SimulatedFlightSource source(world, fc, stride);
 
-    filter::BackendScorer scorer(*backend, map.image.view());
+    filter::BackendScorerOptions so;
+    so.template_width = a.template_width;
+    if (a.sparse < 1) so.sampling = Sampling::random(a.sparse, a.seed);
+    filter::BackendScorer scorer(*backend, map.image.view(), so);
     filter::FilterConfig cfg;  // the dissertation's choices: KLD sampling, logistic:0.2
     cfg.metres_per_pixel = map.metres_per_pixel;
     cfg.seed = a.seed;
@@ -92,9 +96,11 @@ void demo(const DemoArgs& a) {
     filter::write_rows_csv(out + "/localization.csv", result.rows);
     filter::write_summary_json(out + "/summary.json", result.summary,
                                {{"backend", backend->info().name}, {"conversion", cfg.conversion.to_string()},
-                                {"sampling", filter::to_string(cfg.sampling)}, {"scenario", preset.name}, {"scoring_density", "dense"}},
+                                {"sampling", filter::to_string(cfg.sampling)}, {"scenario", preset.name},
+                                {"scoring_density", a.sparse < 1 ? "random " + std::to_string(a.sparse) : "dense"}},
                                {{"seed", static_cast<double>(a.seed)}, {"filter_rate_hz", preset.fps / stride},
-                                {"map_year", static_cast<double>(a.map_year)}, {"flight_year", static_cast<double>(a.flight_year)}});
+                                {"map_year", static_cast<double>(a.map_year)},
+                                {"template_width", static_cast<double>(a.template_width)}, {"flight_year", static_cast<double>(a.flight_year)}});
     std::cout << "DPC-PFL demo: " << preset.name << ", " << a.distance_km << " km at " << preset.altitude_m << " m, map "
               << a.flight_year - a.map_year << " years older than the flight, backend " << backend->info().name << ", seed " << a.seed
               << "\n"
@@ -116,6 +122,8 @@ void add_demo_command(CLI::App& app) {
     cmd->add_option("--distance-km", a->distance_km, "Distance to fly")->capture_default_str();
     cmd->add_option("--backend", a->backend, "Scoring backend or 'fastest'")->capture_default_str();
     cmd->add_option("--rate", a->rate_hz, "Filter rate in Hz")->capture_default_str();
+    cmd->add_option("--template-width", a->template_width, "Camera frames are downscaled to this width before scoring")->capture_default_str();
+    cmd->add_option("--sparse", a->sparse, "Share of template pixels scored (1 = dense)")->capture_default_str()->check(CLI::Range(1e-4, 1.0));
     cmd->add_option("--map-year", a->map_year, "Year of the localization map")->capture_default_str();
     cmd->add_option("--flight-year", a->flight_year, "Year the flight sees")->capture_default_str();
     cmd->add_option("--seed", a->seed, "Seed of map, flight and filter")->capture_default_str();
