@@ -1,6 +1,7 @@
 // Kernels, specialized pipelines and the on-disk pipeline cache; see vk_pipeline.hpp.
 #include "vk_pipeline.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -111,20 +112,34 @@ Kernel::Kernel(Context& context, PipelineCache& cache, std::span<const std::uint
     alloc.descriptorSetCount = 1;
     alloc.pSetLayouts = &set_layout_;
     check(api.vkAllocateDescriptorSets(dev, &alloc, &set_), "vkAllocateDescriptorSets");
+
+    buffer_infos_.assign(total, VkDescriptorBufferInfo{VK_NULL_HANDLE, 0, VK_WHOLE_SIZE});
+    std::uint32_t first = 0;
+    for (std::uint32_t i = 0; i < binding_counts_.size(); ++i) {
+        VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+        w.dstSet = set_;
+        w.dstBinding = i;
+        w.descriptorCount = binding_counts_[i];
+        w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        w.pBufferInfo = buffer_infos_.data() + first;
+        writes_.push_back(w);
+        first += binding_counts_[i];
+    }
 }
 
 Kernel::~Kernel() {
     const InstanceApi& api = context_.api();
     const VkDevice dev = context_.device();
-    for (auto& [spec, p] : pipelines_) api.vkDestroyPipeline(dev, p, nullptr);
+    for (const Specialized& s : pipelines_) api.vkDestroyPipeline(dev, s.pipeline, nullptr);
     api.vkDestroyDescriptorPool(dev, pool_, nullptr);
     api.vkDestroyPipelineLayout(dev, layout_, nullptr);
     api.vkDestroyDescriptorSetLayout(dev, set_layout_, nullptr);
     api.vkDestroyShaderModule(dev, module_, nullptr);
 }
 
-VkPipeline Kernel::pipeline(const std::vector<std::uint32_t>& spec) {
-    if (auto it = pipelines_.find(spec); it != pipelines_.end()) return it->second;
+VkPipeline Kernel::pipeline(std::span<const std::uint32_t> spec) {
+    for (const Specialized& s : pipelines_)
+        if (std::ranges::equal(s.spec, spec)) return s.pipeline;
     std::vector<VkSpecializationMapEntry> entries;
     for (std::uint32_t i = 0; i < spec.size(); ++i)
         entries.push_back({i, static_cast<std::uint32_t>(i * sizeof(std::uint32_t)), sizeof(std::uint32_t)});
@@ -153,31 +168,16 @@ VkPipeline Kernel::pipeline(const std::vector<std::uint32_t>& spec) {
                     context_.physical().info.device + " failed: " + result_name(r) +
                     (log.empty() ? "; run with TRN_VULKAN_VALIDATION=1 for the validation layer's report" : log));
     }
-    pipelines_.emplace(spec, p);
+    pipelines_.push_back({std::vector<std::uint32_t>(spec.begin(), spec.end()), p});
     return p;
 }
 
-void Kernel::bind(const std::vector<std::vector<VkBuffer>>& buffers) {
-    std::vector<VkDescriptorBufferInfo> infos;
-    std::size_t total = 0;
-    for (const auto& b : buffers) total += b.size();
-    infos.reserve(total);  // pointers into infos stay valid
-    std::vector<VkWriteDescriptorSet> writes;
-    for (std::uint32_t i = 0; i < buffers.size(); ++i) {
-        if (buffers[i].size() != binding_counts_.at(i))
-            throw Error("vulkan: kernel " + name_ + " binding " + std::to_string(i) + " needs " +
-                        std::to_string(binding_counts_[i]) + " buffers, got " + std::to_string(buffers[i].size()));
-        const std::size_t first = infos.size();
-        for (VkBuffer b : buffers[i]) infos.push_back({b, 0, VK_WHOLE_SIZE});
-        VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-        w.dstSet = set_;
-        w.dstBinding = i;
-        w.descriptorCount = binding_counts_[i];
-        w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-        w.pBufferInfo = infos.data() + first;
-        writes.push_back(w);
-    }
-    context_.api().vkUpdateDescriptorSets(context_.device(), static_cast<std::uint32_t>(writes.size()), writes.data(), 0, nullptr);
+void Kernel::bind(std::span<const VkBuffer> buffers) {
+    if (buffers.size() != buffer_infos_.size())
+        throw Error("vulkan: kernel " + name_ + " binds " + std::to_string(buffer_infos_.size()) + " buffers, got " +
+                    std::to_string(buffers.size()));
+    for (std::size_t k = 0; k < buffers.size(); ++k) buffer_infos_[k].buffer = buffers[k];
+    context_.api().vkUpdateDescriptorSets(context_.device(), static_cast<std::uint32_t>(writes_.size()), writes_.data(), 0, nullptr);
 }
 
 void Kernel::record_dispatch(VkCommandBuffer cmd, VkPipeline pipeline, const void* push, std::uint32_t gx, std::uint32_t gy) {

@@ -2,9 +2,10 @@
 // Compute kernels: a SPIR-V module with its descriptor set layout (storage buffers only), push
 // constant block and one descriptor set, plus pipelines specialized per set of specialization
 // constants (created on first use, kept for the kernel's life). A VkPipelineCache persisted on
-// disk makes later runs skip the driver's shader compilation.
+// disk makes later runs skip the driver's shader compilation. Once a pipeline exists, pipeline(),
+// bind() and record_dispatch() allocate nothing on the host (steady-state calls must not).
 #include <cstdint>
-#include <map>
+#include <initializer_list>
 #include <span>
 #include <string>
 #include <vector>
@@ -40,9 +41,12 @@ public:
     Kernel& operator=(const Kernel&) = delete;
 
     // The pipeline for specialization constants 0..n-1 = spec (all 32-bit).
-    VkPipeline pipeline(const std::vector<std::uint32_t>& spec);
-    // Points every binding at whole buffers: buffers[i] holds binding_counts[i] entries.
-    void bind(const std::vector<std::vector<VkBuffer>>& buffers);
+    VkPipeline pipeline(std::span<const std::uint32_t> spec);
+    VkPipeline pipeline(std::initializer_list<std::uint32_t> spec) { return pipeline(std::span(spec.begin(), spec.size())); }
+    // Points every binding at whole buffers: `buffers` lists binding 0's binding_counts[0] buffers,
+    // then binding 1's, and so on.
+    void bind(std::span<const VkBuffer> buffers);
+    void bind(std::initializer_list<VkBuffer> buffers) { bind(std::span(buffers.begin(), buffers.size())); }
     // Records bind pipeline + descriptor set + push constants + dispatch.
     void record_dispatch(VkCommandBuffer cmd, VkPipeline pipeline, const void* push, std::uint32_t gx, std::uint32_t gy = 1);
 
@@ -57,7 +61,15 @@ private:
     VkPipelineLayout layout_ = VK_NULL_HANDLE;
     VkDescriptorPool pool_ = VK_NULL_HANDLE;
     VkDescriptorSet set_ = VK_NULL_HANDLE;
-    std::map<std::vector<std::uint32_t>, VkPipeline> pipelines_;
+    // bind()'s write list, sized once here so that binding allocates nothing.
+    std::vector<VkDescriptorBufferInfo> buffer_infos_;
+    std::vector<VkWriteDescriptorSet> writes_;
+    // A kernel has a handful of specializations: a linear search needs no key built per lookup.
+    struct Specialized {
+        std::vector<std::uint32_t> spec;
+        VkPipeline pipeline;
+    };
+    std::vector<Specialized> pipelines_;
 };
 
 }  // namespace trn::vk

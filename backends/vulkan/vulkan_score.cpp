@@ -1,6 +1,7 @@
 // Vulkan batched scoring: host-side sample table and affines, one dispatch with one work-group per
 // particle (ncc_score.comp), then finalize_score on the downloaded sums.
 #include <algorithm>
+#include <array>
 #include <cstring>
 
 #include "vulkan_backend_impl.hpp"
@@ -53,9 +54,10 @@ void VulkanBackend::do_score(const MapStorage& storage, const ScoringPlan& plan,
     }
     double upload_ms = ms_since(t0);
 
-    std::vector<std::vector<VkBuffer>> bindings{{samples_->device()}, {affines_->device()}, {sums_->device()}, {}};
-    for (std::uint32_t c = 0; c < kMaxMapChunks; ++c)  // unused bands point at the last real one
-        bindings[3].push_back(map.chunks[std::min<std::size_t>(c, map.chunks.size() - 1)]->device());
+    // Bindings 0..2, then binding 3's bands; unused bands point at the last real one.
+    std::array<VkBuffer, 3 + kMaxMapChunks> bindings{samples_->device(), affines_->device(), sums_->device()};
+    for (std::uint32_t c = 0; c < kMaxMapChunks; ++c)
+        bindings[3 + c] = map.chunks[std::min<std::size_t>(c, map.chunks.size() - 1)]->device();
     ncc_kernel_->bind(bindings);
     const VkPipeline pipeline = ncc_kernel_->pipeline(
         {score_group_size_, static_cast<std::uint32_t>(samples), static_cast<std::uint32_t>(map.chunks.size())});

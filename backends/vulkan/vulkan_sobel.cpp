@@ -38,7 +38,7 @@ void VulkanBackend::do_sobel(GrayView src, Int16View gx, Int16View gy, PhaseTime
     sobel_src_->ensure((band + 2) * src_pitch);
     sobel_gx_->ensure(band * out_words * 4);
     sobel_gy_->ensure(band * out_words * 4);
-    sobel_kernel_->bind({{sobel_src_->device()}, {sobel_gx_->device()}, {sobel_gy_->device()}});
+    sobel_kernel_->bind({sobel_src_->device(), sobel_gx_->device(), sobel_gy_->device()});
     const VkPipeline pipeline = sobel_kernel_->pipeline({sobel_group_x_, sobel_group_y_});
 
     double upload_ms = 0, execute_ms = 0, download_ms = 0;
