@@ -12,10 +12,12 @@ namespace {
 // so the energy of any span is two interpolations: cheap enough for thousands of offsets.
 struct CumulativeEnergy {
     std::vector<double> t, c;
+    // Times relative to the first sample, so offsets stay small numbers with fine resolution.
     explicit CumulativeEnergy(const PowerTrace& tr) {
         std::vector<double> ts = tr.t;
         if (tr.kind == SampleKind::IntervalMean)
             for (std::size_t i = 0; i < ts.size(); ++i) ts[i] = 0.5 * ((i ? tr.t[i - 1] : tr.first_interval_start.value_or(tr.t[0])) + tr.t[i]);
+        for (double& x : ts) x -= tr.t.front();
         t = ts;
         c.assign(ts.size(), 0);
         for (std::size_t i = 1; i < ts.size(); ++i) c[i] = c[i - 1] + 0.5 * (tr.w[i] + tr.w[i - 1]) * (ts[i] - ts[i - 1]);
@@ -54,7 +56,9 @@ double search(const CumulativeEnergy& ce, const std::vector<Span>& spans, std::s
     step = std::max(step, (hi - lo) / 20000);
     double best = lo, best_c = -1e300;
     for (;;) {
-        for (double o = lo; o <= hi + 1e-15; o += step) {
+        const long count = static_cast<long>(std::floor((hi - lo) / step + 1e-9));
+        for (long i = 0; i <= count; ++i) {
+            const double o = lo + i * step;
             const double c = contrast(ce, spans, from, to, o);
             if (c > best_c) best_c = c, best = o;
         }
@@ -88,10 +92,14 @@ Alignment align_auto(const PowerTrace& tr, const MarkerFile& markers, const Alig
     }
     std::sort(spans.begin(), spans.end(), [](const Span& a, const Span& b) { return a.start < b.start; });
     if (spans.empty() || busy_total <= 0) throw Error("align: the marker file has no busy interval (sync or frame) to align on");
+    // Search on relative clocks (markers from their first row, trace from its first sample):
+    // UNIX-time offsets are ~1e9 s, where a double cannot resolve microsecond steps.
+    const double marker_ref = spans.front().start, trace_ref = tr.t.front(), shift = trace_ref - marker_ref;
+    for (auto& sp : spans) sp.start -= marker_ref, sp.end -= marker_ref;
     const CumulativeEnergy ce(tr);
     const double span_s = spans.back().end - spans.front().start;
     double lo = ce.t.front() - spans.front().start, hi = ce.t.back() - spans.back().end;
-    if (o.search_s > 0) lo = std::max(lo, o.guess_s - o.search_s), hi = std::min(hi, o.guess_s + o.search_s);
+    if (o.search_s > 0) lo = std::max(lo, o.guess_s - shift - o.search_s), hi = std::min(hi, o.guess_s - shift + o.search_s);
     if (hi < lo)
         throw Error("align: the trace (" + std::to_string(ce.t.back() - ce.t.front()) + " s) cannot hold the marker run (" + std::to_string(span_s) +
                     " s) at any offset in the search range");
@@ -121,11 +129,11 @@ Alignment align_auto(const PowerTrace& tr, const MarkerFile& markers, const Alig
         if (whi < wlo) continue;
         double step = 0;
         out.window_offset_s.push_back(search(ce, spans, from, to, wlo, whi, std::max(half / 200, finest), finest, step));
-        out.window_time_s.push_back(0.5 * (spans[from].start + spans[to - 1].end));
+        out.window_time_s.push_back(0.5 * (spans[from].start + spans[to - 1].end));  // relative until the fit is done
     }
     ClockMapping m;
     m.realtime = o.realtime;
-    m.ref_s = spans.front().start;
+    m.ref_s = 0;
     m.offset_s = global;
     const std::size_t n = out.window_offset_s.size();
     if (n >= 2) {
@@ -145,11 +153,16 @@ Alignment align_auto(const PowerTrace& tr, const MarkerFile& markers, const Alig
         }
         out.residual_s = std::sqrt(ss / n);
     }
-    out.mapping = m;
     // Contrast with the final mapping: map every span and measure directly.
     std::vector<Span> mapped;
     for (const auto& s : spans) mapped.push_back({m.map(s.start), m.map(s.end), s.busy});
     out.contrast_w = contrast(ce, mapped, 0, mapped.size(), 0);
+    // Back to absolute clocks: t_trace = t + (offset + shift) + drift * (t - marker_ref).
+    m.ref_s = marker_ref;
+    m.offset_s += shift;
+    for (auto& x : out.window_offset_s) x += shift;
+    for (auto& x : out.window_time_s) x += marker_ref;
+    out.mapping = m;
     return out;
 }
 

@@ -1,0 +1,58 @@
+#pragma once
+// One fuzz input through a parser and everything downstream of it: a parse may refuse the input
+// with trn::Error, but it must never crash, and what it accepts must integrate to finite joules.
+// Shared by the libFuzzer targets and the replay driver used in CI.
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <string_view>
+
+#include "trn/energy/integrate.hpp"
+#include "trn/energy/markers.hpp"
+#include "trn/energy/parsers.hpp"
+
+namespace trn::energy::fuzz {
+
+[[noreturn]] inline void violation(const char* what) {
+    std::fprintf(stderr, "fuzz: invariant broken: %s\n", what);
+    std::abort();
+}
+
+// Returns true when the parser accepted the input.
+inline bool run_one(const std::string& format, std::string_view input) {
+    PowerTrace tr;
+    try {
+        if (format == "markers") {
+            (void)parse_markers(input, "fuzz");
+            return true;
+        }
+        tr = parse_power_log(input, "fuzz", format);
+    } catch (const trn::Error&) {
+        return false;  // a clear refusal is the right answer to garbage
+    }
+    for (std::size_t i = 0; i < tr.size(); ++i) {
+        if (!std::isfinite(tr.t[i]) || !std::isfinite(tr.w[i])) violation("non-finite sample accepted");
+        if (i && !(tr.t[i] > tr.t[i - 1])) violation("times not strictly increasing");
+    }
+    if (tr.size() < 2) return true;
+    const double a = tr.first_interval_start.value_or(tr.t.front()), b = tr.t.back();
+    const IntervalEnergy e = integrate_interval(tr, a, b);
+    if (!std::isfinite(e.energy_j) || !std::isfinite(e.error_j)) violation("NaN/inf joules for the whole trace");
+    const IntervalEnergy half = integrate_interval(tr, a + 0.25 * (b - a), a + 0.75 * (b - a), Rule::Hold);
+    if (!std::isfinite(half.energy_j) || !std::isfinite(half.error_j)) violation("NaN/inf joules for a span");
+    std::vector<TimedInterval> frames;
+    try {
+        frames = intervals_from_trace_markers(tr);
+    } catch (const trn::Error&) {
+    }
+    if (frames.empty()) frames = {{"frame", 0, a, 0.5 * (a + b)}, {"frame", 1, 0.5 * (a + b) + 1e-9 * (b - a), b}};
+    const RunEnergy run = integrate_frames(tr, frames);
+    if (!std::isfinite(run.idle_w)) violation("NaN idle power");
+    for (const auto& f : run.frames)
+        if (!std::isfinite(f.gross_j) || !std::isfinite(f.net_j) || !std::isfinite(f.error_j)) violation("NaN/inf frame joules");
+    return true;
+}
+
+}  // namespace trn::energy::fuzz
