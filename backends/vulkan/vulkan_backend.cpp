@@ -38,6 +38,25 @@ std::uint32_t choose_score_group_size(const Context& ctx) {
     return floor_pow2(std::min({want, lim.maxComputeWorkGroupInvocations, lim.maxComputeWorkGroupSize[0]}));
 }
 
+// Particles per scoring work-group: $TRN_VULKAN_PARTICLES_PER_GROUP when set (1..16, for tuning),
+// else 8 on CPU devices (each template read then serves several particles) and 1 on GPUs
+// (where one particle per group already gives enough groups).
+std::uint32_t choose_particles_per_group(const Context& ctx) {
+    std::uint32_t want = ctx.physical().properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? 8 : 1;
+    if (const char* env = std::getenv("TRN_VULKAN_PARTICLES_PER_GROUP"); env && *env) {
+        const long v = std::strtol(env, nullptr, 10);
+        if (v < 1 || v > 16) throw Error(std::string("vulkan: TRN_VULKAN_PARTICLES_PER_GROUP=") + env + " is not in [1, 16]");
+        want = static_cast<std::uint32_t>(v);
+    }
+    return want;
+}
+
+// TRN_VULKAN_MAP_LAYOUT=bytes keeps maps four pixels to a word even where quads fit (to test that path).
+bool quad_maps_allowed() {
+    const char* env = std::getenv("TRN_VULKAN_MAP_LAYOUT");
+    return !(env && std::strcmp(env, "bytes") == 0);
+}
+
 }  // namespace
 
 VulkanBackend::VulkanBackend(int index)
@@ -55,12 +74,14 @@ VulkanBackend::VulkanBackend(int index)
         subgroups ? std::span<const std::uint32_t>(ncc_score_subgroup) : std::span<const std::uint32_t>(ncc_score_shared);
     // Bindings: sample table, affines, sums, map bands.
     ncc_kernel_ = std::make_unique<Kernel>(ctx, *cache_, ncc_code, subgroups ? "ncc_score (subgroup reduction)" : "ncc_score (shared-memory reduction)",
-                                           std::vector<std::uint32_t>{1, 1, 1, kMaxMapChunks}, 4 * sizeof(std::uint32_t));
+                                           std::vector<std::uint32_t>{1, 1, 1, kMaxMapChunks}, 6 * sizeof(std::uint32_t));
     sobel_kernel_ = std::make_unique<Kernel>(ctx, *cache_, std::span<const std::uint32_t>(sobel3x3), "sobel3x3",
                                              std::vector<std::uint32_t>{1, 1, 1}, 4 * sizeof(std::uint32_t));
     score_group_size_ = choose_score_group_size(ctx);
+    particles_per_group_ = choose_particles_per_group(ctx);
     sobel_group_x_ = std::min<std::uint32_t>(64, ctx.limits().maxComputeWorkGroupSize[0]);
-    info_.details += ", scoring work-group " + std::to_string(score_group_size_) +
+    info_.details += ", scoring work-group " + std::to_string(score_group_size_) + " for " +
+                     std::to_string(particles_per_group_) + " particle(s)" +
                      (subgroups ? " with subgroup reduction" : " with shared-memory reduction");
 
     samples_ = std::make_unique<Mirror>(ctx, "the template sample table");
@@ -100,10 +121,17 @@ MapHandle VulkanBackend::do_upload_map(GrayView map, PhaseTimes* times) {
     const std::size_t w = static_cast<std::size_t>(map.width), h = static_cast<std::size_t>(map.height);
     // Bytes one band may hold: the storage-buffer range, capped at 1 GiB per allocation.
     const std::size_t max_bytes = std::min<std::size_t>(ctx.limits().maxStorageBufferRange, std::size_t(1) << 30) & ~std::size_t(3);
-    auto band_bytes = [&](std::size_t rows) { return (rows * w + 3) & ~std::size_t(3); };
     auto handle = std::make_shared<VulkanMap>(this, context_, map.width, map.height);
-    std::size_t rows_per_chunk = h, chunk_count = 1;
-    if (band_bytes(h) > max_bytes) {
+
+    // Quads: H-1 quad rows of W words, no overlap.
+    const std::size_t quad_rows_per_band = max_bytes / (4 * w);
+    const bool quads = quad_maps_allowed() && quad_rows_per_band > 0 &&
+                       (h - 1 + quad_rows_per_band - 1) / quad_rows_per_band <= kMaxMapChunks;
+    auto band_bytes = [&](std::size_t rows) { return quads ? rows * w * 4 : (rows * w + 3) & ~std::size_t(3); };
+    std::size_t rows_per_chunk = quads ? std::min(h - 1, quad_rows_per_band) : h, chunk_count = 1;
+    if (quads) {
+        chunk_count = (h - 1 + rows_per_chunk - 1) / rows_per_chunk;
+    } else if (band_bytes(h) > max_bytes) {
         if (max_bytes / w < 3)
             throw Error("upload_map: map rows of " + std::to_string(w) + " pixels are too wide for " + info_.name);
         rows_per_chunk = max_bytes / w - 1;  // plus one overlap row
@@ -114,16 +142,31 @@ MapHandle VulkanBackend::do_upload_map(GrayView map, PhaseTimes* times) {
                         " (maxStorageBufferRange); at most " + std::to_string(kMaxMapChunks) + " are supported");
     }
     handle->rows_per_chunk = static_cast<std::uint32_t>(rows_per_chunk);
+    handle->quads = quads;
 
     const auto t0 = Clock::now();
     VkCommandBuffer cmd = recorder_->begin();
     recorder_->mark(0);
     for (std::size_t c = 0; c < chunk_count; ++c) {
-        const std::size_t first = c * rows_per_chunk, rows = std::min(rows_per_chunk + 1, h - first);
+        const std::size_t first = c * rows_per_chunk;
+        const std::size_t rows = quads ? std::min(rows_per_chunk, h - 1 - first) : std::min(rows_per_chunk + 1, h - first);
         auto chunk = std::make_unique<Mirror>(ctx, "a map band");
         chunk->ensure(band_bytes(rows));
-        auto* dst = static_cast<std::uint8_t*>(chunk->host());
-        for (std::size_t y = 0; y < rows; ++y) std::memcpy(dst + y * w, map.row(static_cast<int>(first + y)), w);
+        if (quads) {
+            auto* dst = static_cast<std::uint32_t*>(chunk->host());
+            for (std::size_t y = 0; y < rows; ++y) {
+                const std::uint8_t* top = map.row(static_cast<int>(first + y));
+                const std::uint8_t* bottom = map.row(static_cast<int>(first + y + 1));
+                std::uint32_t* out = dst + y * w;
+                for (std::size_t x = 0; x + 1 < w; ++x)
+                    out[x] = std::uint32_t(top[x]) | std::uint32_t(top[x + 1]) << 8 | std::uint32_t(bottom[x]) << 16 |
+                             std::uint32_t(bottom[x + 1]) << 24;
+                out[w - 1] = 0;  // the last column starts no 2x2 footprint
+            }
+        } else {
+            auto* dst = static_cast<std::uint8_t*>(chunk->host());
+            for (std::size_t y = 0; y < rows; ++y) std::memcpy(dst + y * w, map.row(static_cast<int>(first + y)), w);
+        }
         chunk->record_upload(cmd, band_bytes(rows));
         handle->chunks.push_back(std::move(chunk));
     }

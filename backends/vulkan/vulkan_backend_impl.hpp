@@ -15,9 +15,12 @@ namespace trn::vk {
 
 inline constexpr std::uint32_t kMaxMapChunks = 8;  // TRN_MAX_MAP_CHUNKS in ncc_score.comp
 
-// A map on the device as up to kMaxMapChunks row bands: band c holds rows [c*R, c*R + R] (one row
-// of overlap) so that each band fits the device's maxStorageBufferRange. Keeps the context alive
-// so a map may outlive its backend object safely.
+// A map on the device as up to kMaxMapChunks row bands so that each band fits the device's
+// maxStorageBufferRange (layouts in ncc_score.comp). Quad layout: a 32-bit word per pixel with its
+// 2x2 bilinear footprint, band c holds quad rows [c*R, c*R + R). Bytes layout (when quads would
+// need too many bands, or TRN_VULKAN_MAP_LAYOUT=bytes): four pixels to a word, band c holds rows
+// [c*R, c*R + R] (one row of overlap). Keeps the context alive so a map may outlive its backend
+// object safely.
 class VulkanMap : public MapStorage {
 public:
     VulkanMap(const Backend* owner, std::shared_ptr<Context> context, int width, int height)
@@ -25,6 +28,7 @@ public:
     std::shared_ptr<Context> context;  // first member: destroyed last
     std::vector<std::unique_ptr<Mirror>> chunks;
     std::uint32_t rows_per_chunk = 0;
+    bool quads = false;
 };
 
 class VulkanBackend final : public Backend {
@@ -51,6 +55,7 @@ private:
     std::unique_ptr<Recorder> recorder_;
     std::unique_ptr<Kernel> ncc_kernel_, sobel_kernel_;
     std::uint32_t score_group_size_ = 64;
+    std::uint32_t particles_per_group_ = 1;
     std::uint32_t sobel_group_x_ = 64, sobel_group_y_ = 1;
     // Grow-only per-call buffers.
     std::unique_ptr<Mirror> samples_, affines_, sums_;

@@ -1,5 +1,5 @@
 // Vulkan batched scoring: host-side sample table and affines, one dispatch with one work-group per
-// particle (ncc_score.comp), then finalize_score on the downloaded sums.
+// particles_per_group_ particles (ncc_score.comp), then finalize_score on the downloaded sums.
 #include <algorithm>
 #include <array>
 #include <cstring>
@@ -11,7 +11,9 @@ namespace {
 
 struct ScorePush {  // matches the push_constant block of ncc_score.comp
     std::uint32_t map_width, map_height, rows_per_chunk, particle_count;
+    float cx, cy;
 };
+static_assert(sizeof(ScorePush) == 6 * 4);
 
 struct GroupSums {  // matches GroupSums in ncc_score.comp (std430)
     std::uint32_t n;
@@ -28,24 +30,26 @@ void VulkanBackend::do_score(const MapStorage& storage, const ScoringPlan& plan,
     const std::size_t samples = plan.sample_count(), particles = poses.size();
     const auto& lim = ctx.limits();
     const std::size_t max_groups = std::size_t(lim.maxComputeWorkGroupCount[0]) * lim.maxComputeWorkGroupCount[1];
-    if (particles > max_groups)
+    const std::size_t groups = (particles + particles_per_group_ - 1) / particles_per_group_;
+    if (groups > max_groups)
         throw Error("score: " + std::to_string(particles) + " poses exceed the " + std::to_string(max_groups) +
                     " work-groups one dispatch on " + info_.name + " may have; score them in batches");
-    if (samples > 0xFFFFFFFFu / 4) throw Error("score: the plan has too many samples for " + info_.name);
+    if (samples > 0xFFFFFFFFu / 8) throw Error("score: the plan has too many samples for " + info_.name);
+    if (std::size_t(plan.width) * std::size_t(plan.height) > 0xFFFFFFFFu)
+        throw Error("score: a " + std::to_string(plan.width) + "x" + std::to_string(plan.height) + " template is too large for " + info_.name);
 
     const auto t0 = Clock::now();
-    samples_->ensure(3 * samples * sizeof(float));
+    // Sample table: centred template value bits [S], then for sparse plans the pixel index v*W+u [S].
+    const std::size_t table_words = plan.dense ? samples : 2 * samples;
+    samples_->ensure(table_words * sizeof(std::uint32_t));
     affines_->ensure(6 * particles * sizeof(float));
     sums_->ensure(particles * sizeof(GroupSums));
-    // Sample table: du[S], dv[S], centred template value[S].
-    float* table = static_cast<float*>(samples_->host());
-    for (std::size_t k = 0; k < samples; ++k) {
-        const int u = plan.dense ? static_cast<int>(k % plan.width) : plan.points[k].u;
-        const int v = plan.dense ? static_cast<int>(k / plan.width) : plan.points[k].v;
-        table[k] = static_cast<float>(u) - plan.cx;
-        table[samples + k] = static_cast<float>(v) - plan.cy;
-    }
-    std::memcpy(table + 2 * samples, plan.centered.data(), samples * sizeof(float));
+    auto* table = static_cast<std::uint32_t*>(samples_->host());
+    std::memcpy(table, plan.centered.data(), samples * sizeof(float));
+    if (!plan.dense)
+        for (std::size_t k = 0; k < samples; ++k)
+            table[samples + k] = static_cast<std::uint32_t>(plan.points[k].v) * static_cast<std::uint32_t>(plan.width) +
+                                 static_cast<std::uint32_t>(plan.points[k].u);
     float* affine = static_cast<float*>(affines_->host());
     for (std::size_t i = 0; i < particles; ++i) {
         const Affine A = pose_to_affine(poses[i]);
@@ -59,16 +63,18 @@ void VulkanBackend::do_score(const MapStorage& storage, const ScoringPlan& plan,
     for (std::uint32_t c = 0; c < kMaxMapChunks; ++c)
         bindings[3 + c] = map.chunks[std::min<std::size_t>(c, map.chunks.size() - 1)]->device();
     ncc_kernel_->bind(bindings);
+    // Specialization constants 0..6 of ncc_score.comp.
     const VkPipeline pipeline = ncc_kernel_->pipeline(
-        {score_group_size_, static_cast<std::uint32_t>(samples), static_cast<std::uint32_t>(map.chunks.size())});
+        {score_group_size_, static_cast<std::uint32_t>(samples), static_cast<std::uint32_t>(map.chunks.size()),
+         particles_per_group_, static_cast<std::uint32_t>(plan.width), plan.dense ? 1u : 0u, map.quads ? 1u : 0u});
     const ScorePush push{static_cast<std::uint32_t>(map.width()), static_cast<std::uint32_t>(map.height()),
-                         map.rows_per_chunk, static_cast<std::uint32_t>(particles)};
-    const std::uint32_t gx = static_cast<std::uint32_t>(std::min<std::size_t>(particles, lim.maxComputeWorkGroupCount[0]));
-    const std::uint32_t gy = static_cast<std::uint32_t>((particles + gx - 1) / gx);
+                         map.rows_per_chunk, static_cast<std::uint32_t>(particles), plan.cx, plan.cy};
+    const std::uint32_t gx = static_cast<std::uint32_t>(std::min<std::size_t>(groups, lim.maxComputeWorkGroupCount[0]));
+    const std::uint32_t gy = static_cast<std::uint32_t>((groups + gx - 1) / gx);
 
     VkCommandBuffer cmd = recorder_->begin();
     recorder_->mark(0);
-    samples_->record_upload(cmd, 3 * samples * sizeof(float));
+    samples_->record_upload(cmd, table_words * sizeof(std::uint32_t));
     affines_->record_upload(cmd, 6 * particles * sizeof(float));
     barrier_after_upload();
     recorder_->mark(1);
