@@ -12,6 +12,7 @@
 #include "trn/energy/integrate.hpp"
 #include "trn/energy/markers.hpp"
 #include "trn/energy/parsers.hpp"
+#include "trn/error.hpp"
 
 namespace trn::energy::fuzz {
 
