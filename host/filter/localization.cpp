@@ -51,7 +51,7 @@ LocalizationResult run_localization(FlightSource& source, ParticleFilter& filter
     LocalizationResult result;
     const double mpp = filter.config().metres_per_pixel;
     FlightSample s;
-    bool started = false;
+    bool started = false, have_odometry = false;
     double odo_e0 = 0, odo_n0 = 0, prev_e = 0, prev_n = 0, prev_tx = 0, prev_ty = 0, distance_m = 0;
     const std::size_t hint = source.frames_hint();
     double wall_s = 0;
@@ -63,14 +63,15 @@ LocalizationResult run_localization(FlightSource& source, ParticleFilter& filter
                 start_x = s.truth_x, start_y = s.truth_y;
             }
             filter.initialise(start_x, start_y, s.heading_rad);
-            if (!std::isfinite(s.odometry_east_m) || !std::isfinite(s.odometry_north_m))
-                throw Error("localize: the first frame has no odometry reading");
-            odo_e0 = prev_e = s.odometry_east_m, odo_n0 = prev_n = s.odometry_north_m;
             prev_tx = s.truth_x, prev_ty = s.truth_y;
             started = true;
         }
         FilterInput in;
         const bool odo_ok = std::isfinite(s.odometry_east_m) && std::isfinite(s.odometry_north_m);
+        if (odo_ok && !have_odometry) {  // the first good reading is the odometry's origin
+            odo_e0 = prev_e = s.odometry_east_m, odo_n0 = prev_n = s.odometry_north_m;
+            have_odometry = true;
+        }
         in.odometry_east_m = odo_ok ? s.odometry_east_m - prev_e : NAN;
         in.odometry_north_m = odo_ok ? s.odometry_north_m - prev_n : NAN;
         if (odo_ok) prev_e = s.odometry_east_m, prev_n = s.odometry_north_m;

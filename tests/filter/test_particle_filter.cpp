@@ -85,7 +85,7 @@ public:
     bool next(FlightSample& s) override {
         if (!inner_.next(s)) return false;
         const std::size_t step = count_++;
-        if (step >= 5 && step <= 7) s.odometry_east_m = s.odometry_north_m = NAN;  // odometry lost
+        if (step == 0 || (step >= 5 && step <= 7)) s.odometry_east_m = s.odometry_north_m = NAN;  // odometry lost
         if (step == 9) s.image = {};                                              // frame failed to load
         if (step == 11) std::fill(s.image.pixels.begin(), s.image.pixels.end(), 0);  // flat frame: every score invalid
         return true;
@@ -106,7 +106,7 @@ TEST(ParticleFilter, BadInputIsCountedAndSurvived) {
     SpoiledFlight src(inner);
     const LocalizationResult r = run_localization(src, pf);
     ASSERT_EQ(r.rows.size(), 50u);
-    EXPECT_EQ(r.summary.counters.odometry_lost, 3u);
+    EXPECT_EQ(r.summary.counters.odometry_lost, 4u);
     EXPECT_EQ(r.summary.counters.frames_missing, 1u);
     EXPECT_EQ(r.summary.counters.reinitialisations, 1u);
     EXPECT_TRUE(r.rows[6].odometry_lost);
