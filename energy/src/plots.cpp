@@ -100,7 +100,7 @@ void plot_histograms(const std::vector<PlotSeries>& series, const std::string& p
         const int bins = std::clamp(static_cast<int>(std::sqrt(static_cast<double>(v.size()))), 5, 40);
         const double width = *hi > *lo ? (*hi - *lo) / bins : std::max(std::abs(*lo) * 1e-3, 1e-9);
         s << "set title " << quoted_path(series[k].name + " (n = " + std::to_string(v.size()) + ")") << "\nset xlabel " << quoted_path(xlabel) << "\n";
-        s << "bw = " << width << "\nbin(x) = bw * floor(x / bw) + bw / 2\n";
+        s << "bw = " << width << "\nlo = " << *lo << "\nbin(x) = lo + bw * floor((x - lo) / bw) + bw / 2\nset boxwidth bw absolute\n";
         s << "set arrow 1 from " << mean << ", graph 0 to " << mean << ", graph 1 nohead lw 2 lc rgb 'red'\n";
         s << "plot " << quoted_path(dat) << " using (bin($1)):(1.0) smooth frequency with boxes lc rgb '#4393c3' title 'energy per frame', "
           << "NaN with lines lw 2 lc rgb 'red' title sprintf('mean %.4g', " << mean << ")\nunset arrow 1\n";
