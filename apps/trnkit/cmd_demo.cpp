@@ -9,6 +9,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "progress.hpp"
 #include "trn/error.hpp"
 #include "trn/filter/backend_choice.hpp"
 #include "trn/filter/flight_source.hpp"
@@ -33,12 +34,7 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-void progress_bar(std::size_t done, std::size_t total) {
-    if (total && done < total && (100 * done / total) == (100 * (done - 1) / total)) return;  // redraw per percent
-    const int width = 40, filled = total ? static_cast<int>(width * std::min(done, total) / total) : 0;
-    std::fprintf(stderr, "\r[%s%s] %zu/%zu steps", std::string(filled, '#').c_str(), std::string(width - filled, ' ').c_str(), done, total);
-    if (done >= total) std::fputc('\n', stderr);
-}
+void progress_bar(std::size_t done, std::size_t total) { draw_progress(done, total, "steps"); }
 
 void demo(const DemoArgs& a) {
     namespace fs = std::filesystem;

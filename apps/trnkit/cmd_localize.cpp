@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "progress.hpp"
 #include "trn/error.hpp"
 #include "trn/filter/backend_choice.hpp"
 #include "trn/filter/flight_source.hpp"
@@ -27,17 +28,7 @@ struct LocalizeArgs {
     bool no_plots = false;
 };
 
-void progress_bar(std::size_t done, std::size_t total) {
-    if (total == 0) {
-        if (done % 50 == 0) std::fprintf(stderr, "\r%zu steps", done);
-        return;
-    }
-    if (done < total && (100 * done / total) == (100 * (done - 1) / total)) return;  // redraw per percent
-    const int width = 40, filled = static_cast<int>(width * std::min(done, total) / total);
-    std::fprintf(stderr, "\r[%s%s] %3d%% %zu/%zu steps", std::string(filled, '#').c_str(), std::string(width - filled, ' ').c_str(),
-                 static_cast<int>(100 * std::min(done, total) / total), done, total);
-    if (done >= total) std::fputc('\n', stderr);
-}
+void progress_bar(std::size_t done, std::size_t total) { draw_progress(done, total, "steps"); }
 
 void localize(const LocalizeArgs& a) {
     namespace fs = std::filesystem;

@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "commands.hpp"
+#include "progress.hpp"
 #include "trn/error.hpp"
 #include "trn/sim/air_format.hpp"
 #include "trn/sim/flight.hpp"
@@ -26,12 +27,7 @@ struct SimulateArgs {
     std::size_t frames = 0;
 };
 
-void progress(std::size_t done, std::size_t total) {
-    const int width = 40, filled = total ? static_cast<int>(width * done / total) : width;
-    std::fprintf(stderr, "\r[%s%s] %3d%% %zu/%zu frames", std::string(filled, '#').c_str(),
-                 std::string(width - filled, ' ').c_str(), total ? static_cast<int>(100 * done / total) : 100, done, total);
-    if (done == total) std::fputc('\n', stderr);
-}
+void progress(std::size_t done, std::size_t total) { draw_progress(done, total, "frames"); }
 
 // Builds the localization map (what a navigator would have on board) and the map the frames are
 // rendered from (the world at flight time, aged when --map-year differs from the base year).

@@ -7,15 +7,17 @@
 
 namespace trn::filter {
 
-double fitted_slope(const std::vector<double>& x, const std::vector<double>& y) {
+FittedLine fit_line(const std::vector<double>& x, const std::vector<double>& y) {
     const std::size_t n = x.size();
-    if (n < 2 || y.size() != n) return NAN;
+    if (n < 2 || y.size() != n) return {};
     double mx = 0, my = 0;
     for (std::size_t i = 0; i < n; ++i) mx += x[i], my += y[i];
     mx /= n, my /= n;
     double sxy = 0, sxx = 0;
     for (std::size_t i = 0; i < n; ++i) sxy += (x[i] - mx) * (y[i] - my), sxx += (x[i] - mx) * (x[i] - mx);
-    return sxx > 0 ? sxy / sxx : NAN;
+    if (!(sxx > 0)) return {};
+    const double slope = sxy / sxx;
+    return {slope, my - slope * mx};
 }
 
 LocalizationSummary summarise(const std::vector<LocalizationRow>& rows, const FilterCounters& counters, double wall_s) {
@@ -40,8 +42,9 @@ LocalizationSummary summarise(const std::vector<LocalizationRow>& rows, const Fi
         for (std::size_t i = 0; i < fe.size(); ++i) sf += fe[i], so += oe[i];
         s.filter_mean_error_m = sf / fe.size(), s.odometry_mean_error_m = so / oe.size();
         s.filter_final_error_m = fe.back(), s.odometry_final_error_m = oe.back();
-        s.filter_error_slope_m_per_km = fitted_slope(km, fe);
-        s.odometry_error_slope_m_per_km = fitted_slope(km, oe);
+        const FittedLine f = fit_line(km, fe), o = fit_line(km, oe);
+        s.filter_error_slope_m_per_km = f.slope, s.filter_error_intercept_m = f.intercept;
+        s.odometry_error_slope_m_per_km = o.slope, s.odometry_error_intercept_m = o.intercept;
     }
     return s;
 }

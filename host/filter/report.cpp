@@ -95,6 +95,15 @@ std::string format_summary(const LocalizationSummary& s) {
     return buf;
 }
 
+// A number as gnuplot reads it; NaN (too few points for a line) as gnuplot's NaN.
+std::string gp_number(double v) {
+    if (!std::isfinite(v)) return "NaN";
+    std::ostringstream os;
+    os.precision(10);
+    os << v;
+    return os.str();
+}
+
 PlotFiles plot_run(const std::string& folder, const std::vector<LocalizationRow>& rows, const LocalizationSummary& s, GrayView map,
                    double mpp, const std::string& title) {
     if (std::system("command -v gnuplot >/dev/null 2>&1") != 0)
@@ -147,16 +156,17 @@ PlotFiles plot_run(const std::string& folder, const std::vector<LocalizationRow>
            << "set terminal pngcairo size 1100,600 font 'sans,11'\n"
            << "reset\nset title " << quoted(title + ": position error over distance flown") << "\n"
            << "set xlabel 'distance flown (km)'\nset ylabel 'error (m)'\nset grid\nset key left top\n"
+           // The trend lines are the summary's own least-squares fits (gnuplot's `fit` would
+           // compute them a second time and leave a fit.log in the working directory).
+           << "ao = " << gp_number(s.odometry_error_slope_m_per_km) << "\nbo = " << gp_number(s.odometry_error_intercept_m) << "\n"
+           << "af = " << gp_number(s.filter_error_slope_m_per_km) << "\nbf = " << gp_number(s.filter_error_intercept_m) << "\n"
            << "fo(x) = ao*x + bo\nff(x) = af*x + bf\n"
-           << "fit fo(x) " << quoted(data) << " using 1:9 via ao, bo\n"
-           << "fit ff(x) " << quoted(data) << " using 1:8 via af, bf\n"
            << "plot " << quoted(data) << " using 1:9 with lines lw 2 lc rgb '#d73027' title 'visual odometry', \\\n"
            << "  '' using 1:8 with lines lw 2 lc rgb '#4575b4' title 'DPC-PFL', \\\n"
            << "  fo(x) with lines dt 2 lw 2 lc rgb '#d73027' title sprintf('odometry trend %.1f m/km', ao), \\\n"
            << "  ff(x) with lines dt 2 lw 2 lc rgb '#4575b4' title sprintf('filter trend %.1f m/km', af)\n";
         close_out(gp, script_path);
     }
-    (void)s;
     const std::string cmd = "gnuplot " + shell_quoted(script_path) + " > " + shell_quoted(folder + "/gnuplot.log") + " 2>&1";
     if (std::system(cmd.c_str()) != 0)
         throw Error("plot: gnuplot failed on " + script_path + " (see " + folder + "/gnuplot.log)");

@@ -30,6 +30,7 @@ struct LocalizationSummary {
     double filter_mean_error_m = NAN, odometry_mean_error_m = NAN;
     double filter_final_error_m = NAN, odometry_final_error_m = NAN;
     double filter_error_slope_m_per_km = NAN, odometry_error_slope_m_per_km = NAN;
+    double filter_error_intercept_m = NAN, odometry_error_intercept_m = NAN;  // of the same lines, at 0 km
     double distance_m = 0;
     double mean_particles = 0;
     double frames_per_second = 0;   // filter steps per second of wall time (sampling + scoring + estimate)
@@ -50,8 +51,12 @@ using ProgressFn = std::function<void(std::size_t, std::size_t)>;
 LocalizationResult run_localization(FlightSource& source, ParticleFilter& filter, const ProgressFn& progress = {},
                                     double start_x = NAN, double start_y = NAN);
 
-// Least-squares slope of y over x (NaN with fewer than two distinct x).
-double fitted_slope(const std::vector<double>& x, const std::vector<double>& y);
+// Least-squares line of y over x (NaN with fewer than two distinct x).
+struct FittedLine {
+    double slope = NAN, intercept = NAN;
+};
+FittedLine fit_line(const std::vector<double>& x, const std::vector<double>& y);
+inline double fitted_slope(const std::vector<double>& x, const std::vector<double>& y) { return fit_line(x, y).slope; }
 LocalizationSummary summarise(const std::vector<LocalizationRow>& rows, const FilterCounters& counters, double wall_s);
 
 }  // namespace trn::filter
