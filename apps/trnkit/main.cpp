@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
     trn::cli::add_simulate_command(app);
     trn::cli::add_check_command(app);
     trn::cli::add_localize_command(app);
+    trn::cli::add_experiment_command(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -1,0 +1,178 @@
+// Job bookkeeping shared by every study: job list, shards, resume, merge and provenance.
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <set>
+
+#include "study.hpp"
+#include "trn/error.hpp"
+#include "trn/experiments/experiment.hpp"
+#include "trn/registry.hpp"
+
+namespace trn::experiments {
+namespace fs = std::filesystem;
+
+std::vector<std::string> study_names() { return {"metrics", "heading", "sampling", "conversion", "robustness", "odometry"}; }
+
+namespace {
+
+std::unique_ptr<Study> make_study(const std::string& name) {
+    if (name == "metrics") return make_metrics_study();
+    if (name == "heading") return make_heading_study();
+    if (name == "sampling") return make_sampling_study();
+    if (name == "conversion") return make_conversion_study();
+    if (name == "robustness") return make_robustness_study();
+    if (name == "odometry") return make_odometry_study();
+    std::string names;
+    for (const auto& n : study_names()) names += " " + n;
+    throw Error("experiment: unknown study '" + name + "' (one of:" + names + ")");
+}
+
+void parse_shard(const std::string& text, std::size_t& index, std::size_t& count) {
+    unsigned long i = 0, n = 0;
+    char tail = 0;
+    if (std::sscanf(text.c_str(), "%lu/%lu%c", &i, &n, &tail) != 2 || n == 0 || i == 0 || i > n)
+        throw Error("experiment: --shard '" + text + "' must be i/n with 1 <= i <= n");
+    index = i - 1;
+    count = n;
+}
+
+Json read_json(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw Error(path + ": cannot open");
+    try {
+        return Json::parse(in);
+    } catch (const std::exception& e) {
+        throw Error(path + ": not valid JSON (" + e.what() + "); delete it to re-run that job");
+    }
+}
+
+void write_json(const std::string& path, const Json& j) {
+    const std::string tmp = path + ".tmp";
+    {
+        std::ofstream out(tmp);
+        out << j.dump(1) << "\n";
+        if (!out) throw Error(tmp + ": write failed");
+    }
+    fs::rename(tmp, path);  // a job file is either complete or absent
+}
+
+std::string git_commit() {
+#ifdef TRN_SOURCE_DIR
+    const std::string cmd = std::string("git -C '") + TRN_SOURCE_DIR + "' rev-parse HEAD 2>/dev/null";
+    if (FILE* p = popen(cmd.c_str(), "r")) {
+        char buf[128] = {};
+        const bool ok = std::fgets(buf, sizeof buf, p) != nullptr;
+        pclose(p);
+        std::string s = ok ? buf : "";
+        while (!s.empty() && (s.back() == '\n' || s.back() == '\r')) s.pop_back();
+        if (s.size() == 40) return s;
+    }
+#endif
+    return "unknown";
+}
+
+void progress_bar(std::size_t done, std::size_t total, const std::string& what) {
+    const int width = 30, filled = total ? static_cast<int>(width * done / total) : width;
+    std::fprintf(stderr, "\r[%s%s] %zu/%zu jobs %-40.40s", std::string(filled, '#').c_str(), std::string(width - filled, ' ').c_str(),
+                 done, total, what.c_str());
+    if (done == total) std::fputc('\n', stderr);
+}
+
+std::string command_prefix(const ExperimentOptions& o, const std::string& out) {
+    return "trnkit experiment " + o.study + (o.quick ? " --quick" : "") + " --seed " + std::to_string(o.seed) + " --backend " + o.backend +
+           " --out '" + out + "'";
+}
+
+}  // namespace
+
+std::size_t run_experiment(const ExperimentOptions& o) {
+    const auto study = make_study(o.study);
+    Json config = study->config(o.quick);
+    config["study"] = o.study;
+    config["quick"] = o.quick;
+    config["seed"] = o.seed;
+    config["backend"] = o.backend;
+    const std::vector<Json> jobs = study->jobs(config);
+    std::set<std::string> ids;
+    for (const Json& j : jobs)
+        if (!ids.insert(j.at("id").get<std::string>()).second) throw Error("experiment: duplicate job id " + j.at("id").dump());
+
+    const std::string out = o.out.empty() ? "experiments/" + o.study + (o.quick ? "-quick" : "") : o.out;
+    if (o.list_jobs) {
+        for (const Json& j : jobs) std::cout << command_prefix(o, out) << " --job " << j.at("id").get<std::string>() << " --no-merge\n";
+        std::cout << command_prefix(o, out) << " --merge\n";
+        return jobs.size();
+    }
+    if (!o.job.empty() && !ids.count(o.job)) throw Error("experiment: --job " + o.job + ": no such job in " + o.study + " (see --list-jobs)");
+
+    const std::string jobs_dir = out + "/jobs";
+    fs::create_directories(jobs_dir);
+    auto job_path = [&](const Json& j) { return jobs_dir + "/" + j.at("id").get<std::string>() + ".json"; };
+    // A finished job is reused only when it was made with exactly this configuration.
+    auto finished = [&](const Json& j) {
+        const std::string path = job_path(j);
+        if (!fs::exists(path)) return false;
+        const Json done = read_json(path);
+        if (done.at("config") != config)
+            throw Error("experiment: " + path + " was made with another configuration (" + done.at("config").dump() + ", asked for " +
+                        config.dump() + "); use another --out or delete it");
+        return true;
+    };
+
+    if (!o.merge_only) {
+        std::size_t shard_index = 0, shard_count = 1;
+        parse_shard(o.shard, shard_index, shard_count);
+        std::vector<const Json*> todo;
+        for (std::size_t i = shard_index; i < jobs.size(); i += shard_count)
+            if ((o.job.empty() || jobs[i].at("id") == o.job) && !finished(jobs[i])) todo.push_back(&jobs[i]);
+        if (!todo.empty()) {
+            std::unique_ptr<Backend> backend = default_registry().create(o.backend);
+            for (std::size_t k = 0; k < todo.size(); ++k) {
+                const Json& params = *todo[k];
+                if (o.progress) progress_bar(k, todo.size(), params.at("id").get<std::string>());
+                const std::string folder = jobs_dir + "/" + params.at("id").get<std::string>();
+                JobContext context{*backend, o.seed, o.quick, folder, !o.no_plots};
+                const auto t0 = std::chrono::steady_clock::now();
+                Json result = study->run_job(config, params, context);
+                const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+                write_json(job_path(params), Json{{"config", config}, {"params", params}, {"result", result}, {"wall_s", wall},
+                                                  {"backend_device", backend->info().device}});
+            }
+            if (o.progress) progress_bar(todo.size(), todo.size(), "done");
+        }
+    }
+    if (o.no_merge) return 0;
+
+    std::vector<Json> outputs;
+    std::size_t missing = 0;
+    double wall_s = 0;
+    std::set<std::string> devices;
+    for (const Json& j : jobs) {
+        if (!finished(j)) {
+            ++missing;
+            continue;
+        }
+        outputs.push_back(read_json(job_path(j)));
+        wall_s += outputs.back().value("wall_s", 0.0);
+        devices.insert(outputs.back().value("backend_device", std::string("?")));
+    }
+    if (missing) {
+        std::cerr << "experiment " << o.study << ": " << missing << " of " << jobs.size() << " jobs not finished; tables not built\n";
+        return missing;
+    }
+    MergeContext mc{out, config, !o.no_plots};
+    const std::string markdown = study->merge(outputs, mc);
+    std::ofstream md(out + "/results.md");
+    md << markdown;
+    Json prov{{"study", o.study}, {"seed", o.seed}, {"git_commit", git_commit()}, {"backend", o.backend},
+              {"backend_devices", devices}, {"jobs", jobs.size()}, {"job_wall_s_total", wall_s}, {"config", config}};
+    write_json(out + "/provenance.json", prov);
+    std::cout << markdown << "\ntables, plots and provenance.json in " << out << " (" << jobs.size() << " jobs, " << wall_s
+              << " s of job time)\n";
+    return 0;
+}
+
+}  // namespace trn::experiments

@@ -1,0 +1,53 @@
+#pragma once
+// The pieces every study is made of (private to host/experiments): a configuration, a list of
+// independent jobs, a job runner and a merge step that builds tables from the job outputs.
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "trn/backend.hpp"
+
+namespace trn::experiments {
+
+using Json = nlohmann::ordered_json;
+
+// What a job may use while it runs.
+struct JobContext {
+    Backend& backend;
+    std::uint64_t seed;
+    bool quick;
+    std::string job_folder;  // for per-job extra files (CSV of a run, plots)
+    bool plots;
+};
+
+struct MergeContext {
+    std::string out;     // output folder: tables and plots go here
+    Json config;         // the study configuration every job shares
+    bool plots;
+};
+
+class Study {
+public:
+    virtual ~Study() = default;
+    virtual std::string name() const = 0;
+    // Everything that makes results comparable (sizes, counts, settings); stored in every job
+    // output and compared at merge time. Seed, backend and quick are added by the runner.
+    virtual Json config(bool quick) const = 0;
+    // One params object per job, each with a unique "id" (a file-name-safe string).
+    virtual std::vector<Json> jobs(const Json& config) const = 0;
+    virtual Json run_job(const Json& config, const Json& params, JobContext& context) const = 0;
+    // Builds tables / plots from every job's {"params", "result"}; returns Markdown for RESULTS.md.
+    virtual std::string merge(const std::vector<Json>& outputs, const MergeContext& context) const = 0;
+};
+
+std::unique_ptr<Study> make_metrics_study();
+std::unique_ptr<Study> make_heading_study();
+std::unique_ptr<Study> make_sampling_study();
+std::unique_ptr<Study> make_conversion_study();
+std::unique_ptr<Study> make_robustness_study();
+std::unique_ptr<Study> make_odometry_study();
+
+}  // namespace trn::experiments

@@ -1,0 +1,112 @@
+#include "world.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+#include <mutex>
+#include <tuple>
+
+#include "trn/error.hpp"
+#include "trn/sim/map_ageing.hpp"
+#include "trn/sim/render.hpp"
+
+namespace trn::experiments {
+
+std::uint64_t Rng::next() {
+    std::uint64_t z = (state_ += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+}
+
+double Rng::uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
+
+double Rng::normal() {
+    // Box-Muller; uniform() < 1 so 1 - u > 0.
+    const double u1 = 1.0 - uniform(), u2 = uniform();
+    return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * M_PI * u2);
+}
+
+std::uint64_t mix_seed(std::uint64_t a, std::uint64_t b) {
+    Rng r(a ^ (b * 0xD1B54A32D192ED03ull + 0x8CB92BA72F3D8DD7ull));
+    return r.next();
+}
+
+namespace {
+std::mutex cache_mutex;
+}
+
+std::shared_ptr<const sim::Map> procedural_map(sim::TerrainStyle style, std::uint64_t seed, int year, double size_m) {
+    static std::map<std::tuple<int, std::uint64_t, int, double>, std::shared_ptr<const sim::Map>> cache;
+    const auto key = std::make_tuple(static_cast<int>(style), seed, year, size_m);
+    std::lock_guard lock(cache_mutex);
+    if (auto it = cache.find(key); it != cache.end()) return it->second;
+    if (cache.size() > 8) cache.clear();  // maps are tens of MB; a study uses a few at a time
+    sim::ProceduralMapOptions o;
+    o.style = style;
+    o.seed = seed;
+    o.year = year;
+    o.width_m = o.height_m = size_m;
+    auto map = std::make_shared<const sim::Map>(sim::generate_procedural_map(o));
+    cache[key] = map;
+    return map;
+}
+
+std::string orthophoto_path() {
+    const char* dir = std::getenv("TRN_SHARED_DATA");
+    if (!dir || !*dir) return "";
+    const std::string path = std::string(dir) + "/orthophoto.png";
+    return std::filesystem::exists(path) ? path : "";
+}
+
+std::shared_ptr<const sim::Map> orthophoto_map() {
+    static std::shared_ptr<const sim::Map> map;
+    std::lock_guard lock(cache_mutex);
+    if (!map) {
+        const std::string path = orthophoto_path();
+        if (path.empty()) throw Error("experiment: the orthophoto is not in $TRN_SHARED_DATA");
+        map = std::make_shared<const sim::Map>(sim::load_map(path, kOrthophotoMetresPerPixel));
+    }
+    return map;
+}
+
+std::shared_ptr<const sim::Map> aged_orthophoto(double years, std::uint64_t seed) {
+    static std::map<std::pair<double, std::uint64_t>, std::shared_ptr<const sim::Map>> cache;
+    const auto base = orthophoto_map();
+    if (years <= 0) return base;
+    std::lock_guard lock(cache_mutex);
+    auto& slot = cache[{years, seed}];
+    if (!slot) {
+        sim::MapAgeingOptions o;
+        o.years = years;
+        o.seed = seed;
+        slot = std::make_shared<const sim::Map>(sim::age_map(*base, o));
+    }
+    return slot;
+}
+
+GrayImage render_at(const sim::Map& map, const sim::Camera& camera, double x, double y, double yaw, double altitude_m,
+                    std::uint64_t noise_seed) {
+    sim::CameraPose pose;
+    pose.map_x = x;
+    pose.map_y = y;
+    pose.yaw_rad = yaw;
+    pose.altitude_m = altitude_m;
+    sim::RenderOptions ro;
+    ro.noise_seed = noise_seed;
+    return sim::render_frame(map, camera, pose, ro);
+}
+
+void add_dissertation_noise(GrayImage& image, std::uint64_t seed, double salt, double pepper, double mean, double sigma) {
+    Rng rng(seed);
+    for (auto& p : image.pixels) {
+        const double u = rng.uniform();
+        double v = u < salt ? 255.0 : u < salt + pepper ? 0.0 : p;
+        v += mean + sigma * rng.normal();
+        p = static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0, 255.0)));
+    }
+}
+
+}  // namespace trn::experiments

@@ -1,0 +1,35 @@
+#pragma once
+// `trnkit experiment NAME`: reproduces one of the dissertation's studies (metrics, heading,
+// sampling, conversion, robustness, odometry). Every study is split into independent jobs; each
+// job writes one JSON into the output folder (finished jobs are skipped, so runs resume), and
+// `merge` turns the job outputs into Markdown + CSV tables with the dissertation's numbers in
+// adjacent columns, gnuplot plots and a provenance JSON. A merge refuses job outputs whose
+// configuration differs from the one asked for.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace trn::experiments {
+
+struct ExperimentOptions {
+    std::string study;           // one of study_names()
+    std::string out;             // output folder (default: experiments/<study>[-quick])
+    std::string backend = "cpu";  // scoring backend spec (registry.hpp)
+    std::string shard = "1/1";   // run jobs i, i+n, i+2n ... (1-based i)
+    std::string job;             // run only the job with this id (what --list-jobs prints)
+    std::uint64_t seed = 1;
+    bool quick = false;          // reduced but meaningful version (CI)
+    bool list_jobs = false;      // print one command per job and exit
+    bool merge_only = false;     // only build tables from finished job outputs
+    bool no_merge = false;       // run jobs only (cluster shards); merge later
+    bool no_plots = false;
+    bool progress = true;        // progress bar on stderr
+};
+
+std::vector<std::string> study_names();
+
+// Runs (part of) a study as the options say; returns the number of jobs still missing (0 when the
+// tables were built). Throws trn::Error naming the bad option or the inconsistent job output.
+std::size_t run_experiment(const ExperimentOptions& options);
+
+}  // namespace trn::experiments
