@@ -18,10 +18,11 @@
 namespace trn::opencl {
 namespace {
 
-// Work items per particle: wide on GPUs, where a work-group maps to warps; narrower on CPU
-// devices, where PoCL runs a work-group as a loop on one core.
+// Work items per particle (each scores 8 samples at a time, see ncc_score.cl): wide on GPUs, where
+// a work-group maps to warps; one on CPU devices, where PoCL runs a work-group as a loop on one
+// core and a single work item walks the template in memory order with no reduction to pay for.
 constexpr std::size_t kGpuWorkGroup = 256;
-constexpr std::size_t kCpuWorkGroup = 64;
+constexpr std::size_t kCpuWorkGroup = 1;
 constexpr std::size_t kSobelTile = 16;
 constexpr int kSumsPerParticle = 8;    // n, sj, sjj, sjt, st, stt, shift, (pad): see ncc_score.cl
 constexpr int kAffinePerParticle = 8;  // a, b, c, d, tx, ty, (pad, pad)
