@@ -33,7 +33,7 @@ std::string safe_id(std::string s) {
 
 // Shared settings of a flight sweep.
 Json flight_config(bool quick) {
-    return {{"distance_m", quick ? 600 : 2000}, {"rate_hz", 2}, {"template_width", 160}, {"nominal_size_m", quick ? 600 : 1600},
+    return {{"distance_m", quick ? 400 : 2000}, {"rate_hz", 2}, {"template_width", quick ? 96 : 160}, {"nominal_size_m", quick ? 600 : 1600},
             {"flight_year", kFlightYear},       {"filter", "defaults: KLD (eps 0.05, q 0.9, 5 m bins, 100..2000), 300 m init radius"}};
 }
 

@@ -22,7 +22,7 @@ class SamplingStudy : public Study {
 public:
     std::string name() const override { return "sampling"; }
     Json config(bool quick) const override {
-        return {{"starts", quick ? 3 : 100}, {"iterations", quick ? 25 : 50}, {"flight_m", quick ? 500 : 1000},
+        return {{"starts", quick ? 4 : 100}, {"iterations", 50}, {"flight_m", 1000},
                 {"search_radius_m", 312},    {"success_m", 15},              {"particles", 500},
                 {"altitude_m", 100},         {"camera", "400x400 90deg"},    {"template_width", 100},
                 {"map", "procedural forest 2400 m, 1 m/px, map 2008 / frames 2010"},
