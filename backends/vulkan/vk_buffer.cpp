@@ -53,14 +53,13 @@ void Buffer::ensure(VkDeviceSize bytes) {
 }
 
 namespace {
-constexpr VkBufferUsageFlags kStorage =
-    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
-constexpr VkBufferUsageFlags kStaging = VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+constexpr VkBufferUsageFlags kTransfers = VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+constexpr VkBufferUsageFlags kStaging = kTransfers;
 }  // namespace
 
-Mirror::Mirror(Context& context, const char* what)
+Mirror::Mirror(Context& context, const char* what, VkBufferUsageFlags shader_usage)
     : context_(context),
-      device_(context, context.unified_memory() ? Buffer::Place::Host : Buffer::Place::Device, kStorage, what) {
+      device_(context, context.unified_memory() ? Buffer::Place::Host : Buffer::Place::Device, kTransfers | shader_usage, what) {
     if (!context.unified_memory()) staging_ = std::make_unique<Buffer>(context, Buffer::Place::Host, kStaging, what);
 }
 
@@ -80,5 +79,16 @@ void Mirror::record_download(VkCommandBuffer cmd, VkDeviceSize bytes) const {
     const VkBufferCopy region{0, 0, bytes};
     context_.api().vkCmdCopyBuffer(cmd, device_.handle(), staging_->handle(), 1, &region);
 }
+
+TexelView::TexelView(Context& context, VkBuffer buffer, VkFormat format, VkDeviceSize bytes) : context_(context) {
+    VkBufferViewCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO};
+    info.buffer = buffer;
+    info.format = format;
+    info.offset = 0;
+    info.range = bytes;
+    check(context.api().vkCreateBufferView(context.device(), &info, nullptr, &view_), "vkCreateBufferView");
+}
+
+TexelView::~TexelView() { context_.api().vkDestroyBufferView(context_.device(), view_, nullptr); }
 
 }  // namespace trn::vk

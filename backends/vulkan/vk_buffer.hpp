@@ -36,7 +36,8 @@ private:
 
 class Mirror {
 public:
-    Mirror(Context& context, const char* what);
+    // shader_usage: how shaders see the device buffer (transfer bits are always added).
+    Mirror(Context& context, const char* what, VkBufferUsageFlags shader_usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     void ensure(VkDeviceSize bytes);
     // Where the host writes input / reads results.
     void* host() const { return staging_ ? staging_->mapped() : device_.mapped(); }
@@ -53,6 +54,20 @@ private:
     Context& context_;
     Buffer device_;
     std::unique_ptr<Buffer> staging_;
+};
+
+// A VkBufferView over the first `elements` texels of a buffer (for uniform texel buffers).
+class TexelView {
+public:
+    TexelView(Context& context, VkBuffer buffer, VkFormat format, VkDeviceSize bytes);
+    ~TexelView();
+    TexelView(const TexelView&) = delete;
+    TexelView& operator=(const TexelView&) = delete;
+    VkBufferView handle() const { return view_; }
+
+private:
+    Context& context_;
+    VkBufferView view_ = VK_NULL_HANDLE;
 };
 
 }  // namespace trn::vk

@@ -71,9 +71,15 @@ PipelineCache::~PipelineCache() {
     api.vkDestroyPipelineCache(context_.device(), cache_, nullptr);
 }
 
+namespace {
+VkDescriptorType descriptor_type(Binding::Kind kind) {
+    return kind == Binding::Kind::StorageBuffer ? VK_DESCRIPTOR_TYPE_STORAGE_BUFFER : VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+}
+}  // namespace
+
 Kernel::Kernel(Context& context, PipelineCache& cache, std::span<const std::uint32_t> spirv, std::string name,
-               std::vector<std::uint32_t> binding_counts, std::uint32_t push_constant_bytes)
-    : context_(context), cache_(cache), name_(std::move(name)), binding_counts_(std::move(binding_counts)),
+               std::vector<Binding> bindings, std::uint32_t push_constant_bytes)
+    : context_(context), cache_(cache), name_(std::move(name)), bindings_(std::move(bindings)),
       push_bytes_(push_constant_bytes) {
     const InstanceApi& api = context.api();
     const VkDevice dev = context.device();
@@ -82,15 +88,15 @@ Kernel::Kernel(Context& context, PipelineCache& cache, std::span<const std::uint
     module_info.pCode = spirv.data();
     check(api.vkCreateShaderModule(dev, &module_info, nullptr, &module_), "vkCreateShaderModule");
 
-    std::vector<VkDescriptorSetLayoutBinding> bindings;
-    std::uint32_t total = 0;
-    for (std::uint32_t i = 0; i < binding_counts_.size(); ++i) {
-        bindings.push_back({i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, binding_counts_[i], VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
-        total += binding_counts_[i];
+    std::vector<VkDescriptorSetLayoutBinding> layout_bindings;
+    std::uint32_t storage = 0, texel = 0;
+    for (std::uint32_t i = 0; i < bindings_.size(); ++i) {
+        layout_bindings.push_back({i, descriptor_type(bindings_[i].kind), bindings_[i].count, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
+        (bindings_[i].kind == Binding::Kind::StorageBuffer ? storage : texel) += bindings_[i].count;
     }
     VkDescriptorSetLayoutCreateInfo set_info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-    set_info.bindingCount = static_cast<std::uint32_t>(bindings.size());
-    set_info.pBindings = bindings.data();
+    set_info.bindingCount = static_cast<std::uint32_t>(layout_bindings.size());
+    set_info.pBindings = layout_bindings.data();
     check(api.vkCreateDescriptorSetLayout(dev, &set_info, nullptr, &set_layout_), "vkCreateDescriptorSetLayout");
 
     const VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, push_bytes_};
@@ -101,11 +107,13 @@ Kernel::Kernel(Context& context, PipelineCache& cache, std::span<const std::uint
     layout_info.pPushConstantRanges = &push;
     check(api.vkCreatePipelineLayout(dev, &layout_info, nullptr, &layout_), "vkCreatePipelineLayout");
 
-    const VkDescriptorPoolSize pool_size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, total};
+    std::vector<VkDescriptorPoolSize> pool_sizes;
+    if (storage) pool_sizes.push_back({VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, storage});
+    if (texel) pool_sizes.push_back({VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, texel});
     VkDescriptorPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     pool_info.maxSets = 1;
-    pool_info.poolSizeCount = 1;
-    pool_info.pPoolSizes = &pool_size;
+    pool_info.poolSizeCount = static_cast<std::uint32_t>(pool_sizes.size());
+    pool_info.pPoolSizes = pool_sizes.data();
     check(api.vkCreateDescriptorPool(dev, &pool_info, nullptr, &pool_), "vkCreateDescriptorPool");
     VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
     alloc.descriptorPool = pool_;
@@ -113,17 +121,24 @@ Kernel::Kernel(Context& context, PipelineCache& cache, std::span<const std::uint
     alloc.pSetLayouts = &set_layout_;
     check(api.vkAllocateDescriptorSets(dev, &alloc, &set_), "vkAllocateDescriptorSets");
 
-    buffer_infos_.assign(total, VkDescriptorBufferInfo{VK_NULL_HANDLE, 0, VK_WHOLE_SIZE});
-    std::uint32_t first = 0;
-    for (std::uint32_t i = 0; i < binding_counts_.size(); ++i) {
+    // bind()'s write list, with room for every resource, so that binding allocates nothing.
+    buffer_infos_.assign(storage, VkDescriptorBufferInfo{VK_NULL_HANDLE, 0, VK_WHOLE_SIZE});
+    texel_views_.assign(texel, VK_NULL_HANDLE);
+    std::uint32_t first_buffer = 0, first_view = 0;
+    for (std::uint32_t i = 0; i < bindings_.size(); ++i) {
         VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
         w.dstSet = set_;
         w.dstBinding = i;
-        w.descriptorCount = binding_counts_[i];
-        w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-        w.pBufferInfo = buffer_infos_.data() + first;
+        w.descriptorCount = bindings_[i].count;
+        w.descriptorType = descriptor_type(bindings_[i].kind);
+        if (bindings_[i].kind == Binding::Kind::StorageBuffer) {
+            w.pBufferInfo = buffer_infos_.data() + first_buffer;
+            first_buffer += bindings_[i].count;
+        } else {
+            w.pTexelBufferView = texel_views_.data() + first_view;
+            first_view += bindings_[i].count;
+        }
         writes_.push_back(w);
-        first += binding_counts_[i];
     }
 }
 
@@ -172,11 +187,13 @@ VkPipeline Kernel::pipeline(std::span<const std::uint32_t> spec) {
     return p;
 }
 
-void Kernel::bind(std::span<const VkBuffer> buffers) {
-    if (buffers.size() != buffer_infos_.size())
-        throw Error("vulkan: kernel " + name_ + " binds " + std::to_string(buffer_infos_.size()) + " buffers, got " +
-                    std::to_string(buffers.size()));
+void Kernel::bind(std::span<const VkBuffer> buffers, std::span<const VkBufferView> views) {
+    if (buffers.size() != buffer_infos_.size() || views.size() != texel_views_.size())
+        throw Error("vulkan: kernel " + name_ + " binds " + std::to_string(buffer_infos_.size()) + " buffers and " +
+                    std::to_string(texel_views_.size()) + " texel views, got " + std::to_string(buffers.size()) + " and " +
+                    std::to_string(views.size()));
     for (std::size_t k = 0; k < buffers.size(); ++k) buffer_infos_[k].buffer = buffers[k];
+    std::copy(views.begin(), views.end(), texel_views_.begin());
     context_.api().vkUpdateDescriptorSets(context_.device(), static_cast<std::uint32_t>(writes_.size()), writes_.data(), 0, nullptr);
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-// Compute kernels: a SPIR-V module with its descriptor set layout (storage buffers only), push
+// Compute kernels: a SPIR-V module with its descriptor set layout (storage and uniform texel buffers), push
 // constant block and one descriptor set, plus pipelines specialized per set of specialization
 // constants (created on first use, kept for the kernel's life). A VkPipelineCache persisted on
 // disk makes later runs skip the driver's shader compilation. Once a pipeline exists, pipeline(),
@@ -31,11 +31,17 @@ private:
     std::string path_;
 };
 
+// Binding i of a kernel's descriptor set: `count` descriptors of one type.
+struct Binding {
+    enum class Kind { StorageBuffer, UniformTexelBuffer };
+    Kind kind = Kind::StorageBuffer;
+    std::uint32_t count = 1;
+};
+
 class Kernel {
 public:
-    // binding_counts[i]: descriptor count of storage-buffer binding i.
     Kernel(Context& context, PipelineCache& cache, std::span<const std::uint32_t> spirv, std::string name,
-           std::vector<std::uint32_t> binding_counts, std::uint32_t push_constant_bytes);
+           std::vector<Binding> bindings, std::uint32_t push_constant_bytes);
     ~Kernel();
     Kernel(const Kernel&) = delete;
     Kernel& operator=(const Kernel&) = delete;
@@ -43,9 +49,9 @@ public:
     // The pipeline for specialization constants 0..n-1 = spec (all 32-bit).
     VkPipeline pipeline(std::span<const std::uint32_t> spec);
     VkPipeline pipeline(std::initializer_list<std::uint32_t> spec) { return pipeline(std::span(spec.begin(), spec.size())); }
-    // Points every binding at whole buffers: `buffers` lists binding 0's binding_counts[0] buffers,
-    // then binding 1's, and so on.
-    void bind(std::span<const VkBuffer> buffers);
+    // Points every binding at its resources: `buffers` lists the whole buffers of the storage-buffer
+    // bindings in binding order (count of each), `views` those of the texel-buffer bindings.
+    void bind(std::span<const VkBuffer> buffers, std::span<const VkBufferView> views = {});
     void bind(std::initializer_list<VkBuffer> buffers) { bind(std::span(buffers.begin(), buffers.size())); }
     // Records bind pipeline + descriptor set + push constants + dispatch.
     void record_dispatch(VkCommandBuffer cmd, VkPipeline pipeline, const void* push, std::uint32_t gx, std::uint32_t gy = 1);
@@ -54,7 +60,7 @@ private:
     Context& context_;
     PipelineCache& cache_;
     std::string name_;
-    std::vector<std::uint32_t> binding_counts_;
+    std::vector<Binding> bindings_;
     std::uint32_t push_bytes_;
     VkShaderModule module_ = VK_NULL_HANDLE;
     VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;
@@ -63,6 +69,7 @@ private:
     VkDescriptorSet set_ = VK_NULL_HANDLE;
     // bind()'s write list, sized once here so that binding allocates nothing.
     std::vector<VkDescriptorBufferInfo> buffer_infos_;
+    std::vector<VkBufferView> texel_views_;
     std::vector<VkWriteDescriptorSet> writes_;
     // A kernel has a handful of specializations: a linear search needs no key built per lookup.
     struct Specialized {

@@ -23,11 +23,11 @@ std::uint32_t floor_pow2(std::uint32_t v) {
     return p;
 }
 
-// Work-group size for scoring: $TRN_VULKAN_WORKGROUP when set (power of two, for tuning), else 16
-// on CPU devices (lavapipe runs a whole group on one thread; 16 measured fastest of 8..256 there)
-// and 256 on GPUs; always within the device limits.
+// Work-group size for scoring: $TRN_VULKAN_WORKGROUP when set (power of two, for tuning), else 8
+// on CPU devices (lavapipe runs a whole group on one thread; with 8 particles per group, 8 measured
+// fastest of 8..32 there, 640x480 templates) and 256 on GPUs; always within the device limits.
 std::uint32_t choose_score_group_size(const Context& ctx) {
-    std::uint32_t want = ctx.physical().properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? 16 : 256;
+    std::uint32_t want = ctx.physical().properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? 8 : 256;
     if (const char* env = std::getenv("TRN_VULKAN_WORKGROUP"); env && *env) {
         const long v = std::strtol(env, nullptr, 10);
         if (v < 1 || v > 1024 || (v & (v - 1)) != 0)
@@ -39,7 +39,8 @@ std::uint32_t choose_score_group_size(const Context& ctx) {
 }
 
 // Particles per scoring work-group: $TRN_VULKAN_PARTICLES_PER_GROUP when set (1..16, for tuning),
-// else 8 on CPU devices (each template read then serves several particles) and 1 on GPUs
+// else 8 on CPU devices (each template read then serves several particles; on lavapipe, 640x480
+// dense, 4, 8 and 16 measured within 10% of each other and 1 took 1.8x as long) and 1 on GPUs
 // (where one particle per group already gives enough groups).
 std::uint32_t choose_particles_per_group(const Context& ctx) {
     std::uint32_t want = ctx.physical().properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? 8 : 1;
@@ -72,11 +73,15 @@ VulkanBackend::VulkanBackend(int index)
     const bool subgroups = ctx.physical().subgroup_arithmetic() && !(no_subgroups && std::strcmp(no_subgroups, "1") == 0);
     const std::span<const std::uint32_t> ncc_code =
         subgroups ? std::span<const std::uint32_t>(ncc_score_subgroup) : std::span<const std::uint32_t>(ncc_score_shared);
-    // Bindings: sample table, affines, sums, map bands.
-    ncc_kernel_ = std::make_unique<Kernel>(ctx, *cache_, ncc_code, subgroups ? "ncc_score (subgroup reduction)" : "ncc_score (shared-memory reduction)",
-                                           std::vector<std::uint32_t>{1, 1, 1, kMaxMapChunks}, 6 * sizeof(std::uint32_t));
+    // Bindings: sample table, affines, sums, map bands (bytes layout), map bands (quad layout).
+    using Kind = Binding::Kind;
+    ncc_kernel_ = std::make_unique<Kernel>(
+        ctx, *cache_, ncc_code, subgroups ? "ncc_score (subgroup reduction)" : "ncc_score (shared-memory reduction)",
+        std::vector<Binding>{{Kind::StorageBuffer, 1}, {Kind::StorageBuffer, 1}, {Kind::StorageBuffer, 1},
+                             {Kind::StorageBuffer, kMaxMapChunks}, {Kind::UniformTexelBuffer, kMaxMapChunks}},
+        6 * sizeof(std::uint32_t));
     sobel_kernel_ = std::make_unique<Kernel>(ctx, *cache_, std::span<const std::uint32_t>(sobel3x3), "sobel3x3",
-                                             std::vector<std::uint32_t>{1, 1, 1}, 4 * sizeof(std::uint32_t));
+                                             std::vector<Binding>(3), 4 * sizeof(std::uint32_t));
     score_group_size_ = choose_score_group_size(ctx);
     particles_per_group_ = choose_particles_per_group(ctx);
     sobel_group_x_ = std::min<std::uint32_t>(64, ctx.limits().maxComputeWorkGroupSize[0]);
@@ -90,6 +95,9 @@ VulkanBackend::VulkanBackend(int index)
     sobel_src_ = std::make_unique<Mirror>(ctx, "the Sobel source band");
     sobel_gx_ = std::make_unique<Mirror>(ctx, "the Sobel gx band");
     sobel_gy_ = std::make_unique<Mirror>(ctx, "the Sobel gy band");
+    unused_texels_ = std::make_unique<Mirror>(ctx, "the unused texel binding", VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
+    unused_texels_->ensure(4);
+    unused_texel_view_ = std::make_unique<TexelView>(ctx, unused_texels_->device(), VK_FORMAT_R32_UINT, 4);
     ctx.throw_on_validation_messages("creating the Vulkan backend");
 }
 
@@ -119,12 +127,15 @@ void VulkanBackend::barrier_after_download() {
 MapHandle VulkanBackend::do_upload_map(GrayView map, PhaseTimes* times) {
     Context& ctx = *context_;
     const std::size_t w = static_cast<std::size_t>(map.width), h = static_cast<std::size_t>(map.height);
-    // Bytes one band may hold: the storage-buffer range, capped at 1 GiB per allocation.
-    const std::size_t max_bytes = std::min<std::size_t>(ctx.limits().maxStorageBufferRange, std::size_t(1) << 30) & ~std::size_t(3);
+    // Bytes one band may hold: the storage-buffer range (bytes layout) or texel-buffer elements
+    // (quad layout), capped at 1 GiB per allocation.
+    constexpr std::size_t kMaxAllocation = std::size_t(1) << 30;
+    const std::size_t max_bytes = std::min<std::size_t>(ctx.limits().maxStorageBufferRange, kMaxAllocation) & ~std::size_t(3);
+    const std::size_t max_quads = std::min<std::size_t>(ctx.limits().maxTexelBufferElements, kMaxAllocation / 4);
     auto handle = std::make_shared<VulkanMap>(this, context_, map.width, map.height);
 
     // Quads: H-1 quad rows of W words, no overlap.
-    const std::size_t quad_rows_per_band = max_bytes / (4 * w);
+    const std::size_t quad_rows_per_band = max_quads / w;
     const bool quads = quad_maps_allowed() && quad_rows_per_band > 0 &&
                        (h - 1 + quad_rows_per_band - 1) / quad_rows_per_band <= kMaxMapChunks;
     auto band_bytes = [&](std::size_t rows) { return quads ? rows * w * 4 : (rows * w + 3) & ~std::size_t(3); };
@@ -150,7 +161,8 @@ MapHandle VulkanBackend::do_upload_map(GrayView map, PhaseTimes* times) {
     for (std::size_t c = 0; c < chunk_count; ++c) {
         const std::size_t first = c * rows_per_chunk;
         const std::size_t rows = quads ? std::min(rows_per_chunk, h - 1 - first) : std::min(rows_per_chunk + 1, h - first);
-        auto chunk = std::make_unique<Mirror>(ctx, "a map band");
+        auto chunk = std::make_unique<Mirror>(ctx, "a map band", quads ? VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT
+                                                                      : VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
         chunk->ensure(band_bytes(rows));
         if (quads) {
             auto* dst = static_cast<std::uint32_t*>(chunk->host());
@@ -168,6 +180,7 @@ MapHandle VulkanBackend::do_upload_map(GrayView map, PhaseTimes* times) {
             for (std::size_t y = 0; y < rows; ++y) std::memcpy(dst + y * w, map.row(static_cast<int>(first + y)), w);
         }
         chunk->record_upload(cmd, band_bytes(rows));
+        if (quads) handle->views.push_back(std::make_unique<TexelView>(ctx, chunk->device(), VK_FORMAT_R32_UINT, band_bytes(rows)));
         handle->chunks.push_back(std::move(chunk));
     }
     const double host_ms = ms_since(t0);

@@ -15,18 +15,19 @@ namespace trn::vk {
 
 inline constexpr std::uint32_t kMaxMapChunks = 8;  // TRN_MAX_MAP_CHUNKS in ncc_score.comp
 
-// A map on the device as up to kMaxMapChunks row bands so that each band fits the device's
-// maxStorageBufferRange (layouts in ncc_score.comp). Quad layout: a 32-bit word per pixel with its
-// 2x2 bilinear footprint, band c holds quad rows [c*R, c*R + R). Bytes layout (when quads would
-// need too many bands, or TRN_VULKAN_MAP_LAYOUT=bytes): four pixels to a word, band c holds rows
-// [c*R, c*R + R] (one row of overlap). Keeps the context alive so a map may outlive its backend
-// object safely.
+// A map on the device as up to kMaxMapChunks row bands (layouts in ncc_score.comp). Quad layout:
+// uniform texel buffers (R32_UINT) with a word per pixel holding its 2x2 bilinear footprint, band
+// c holds quad rows [c*R, c*R + R), each band within maxTexelBufferElements. Bytes layout (when
+// quads would need too many bands, or TRN_VULKAN_MAP_LAYOUT=bytes): storage buffers with four
+// pixels to a word, band c holds rows [c*R, c*R + R] (one row of overlap), each band within
+// maxStorageBufferRange. Keeps the context alive so a map may outlive its backend object safely.
 class VulkanMap : public MapStorage {
 public:
     VulkanMap(const Backend* owner, std::shared_ptr<Context> context, int width, int height)
         : MapStorage(owner, width, height), context(std::move(context)) {}
     std::shared_ptr<Context> context;  // first member: destroyed last
     std::vector<std::unique_ptr<Mirror>> chunks;
+    std::vector<std::unique_ptr<TexelView>> views;  // quad layout: one per band (destroyed before the bands)
     std::uint32_t rows_per_chunk = 0;
     bool quads = false;
 };
@@ -59,6 +60,9 @@ private:
     std::uint32_t sobel_group_x_ = 64, sobel_group_y_ = 1;
     // Grow-only per-call buffers.
     std::unique_ptr<Mirror> samples_, affines_, sums_;
+    // What the binding of the map layout a map does not use points at (every descriptor must be valid).
+    std::unique_ptr<Mirror> unused_texels_;
+    std::unique_ptr<TexelView> unused_texel_view_;
     std::unique_ptr<Mirror> sobel_src_, sobel_gx_, sobel_gy_;
 };
 

@@ -58,11 +58,16 @@ void VulkanBackend::do_score(const MapStorage& storage, const ScoringPlan& plan,
     }
     double upload_ms = ms_since(t0);
 
-    // Bindings 0..2, then binding 3's bands; unused bands point at the last real one.
-    std::array<VkBuffer, 3 + kMaxMapChunks> bindings{samples_->device(), affines_->device(), sums_->device()};
-    for (std::uint32_t c = 0; c < kMaxMapChunks; ++c)
-        bindings[3 + c] = map.chunks[std::min<std::size_t>(c, map.chunks.size() - 1)]->device();
-    ncc_kernel_->bind(bindings);
+    // Bindings 0..2, then binding 3's storage bands and binding 4's texel bands. Unused bands point
+    // at the last real one; the layout the map does not use points at stand-ins.
+    std::array<VkBuffer, 3 + kMaxMapChunks> buffers{samples_->device(), affines_->device(), sums_->device()};
+    std::array<VkBufferView, kMaxMapChunks> views{};
+    for (std::uint32_t c = 0; c < kMaxMapChunks; ++c) {
+        const std::size_t band = std::min<std::size_t>(c, map.chunks.size() - 1);
+        buffers[3 + c] = map.quads ? samples_->device() : map.chunks[band]->device();
+        views[c] = map.quads ? map.views[band]->handle() : unused_texel_view_->handle();
+    }
+    ncc_kernel_->bind(buffers, views);
     // Specialization constants 0..6 of ncc_score.comp.
     const VkPipeline pipeline = ncc_kernel_->pipeline(
         {score_group_size_, static_cast<std::uint32_t>(samples), static_cast<std::uint32_t>(map.chunks.size()),

@@ -52,7 +52,8 @@ struct GroupSums {
     float sj, sjj, sjt, st, stt, shift, unused;
 };
 layout(std430, binding = 2) writeonly buffer Sums { GroupSums sums[]; };
-layout(std430, binding = 3) readonly buffer MapChunk { uint words[]; } map_chunks[TRN_MAX_MAP_CHUNKS];
+layout(std430, binding = 3) readonly buffer MapChunk { uint words[]; } map_chunks[TRN_MAX_MAP_CHUNKS];  // bytes layout
+layout(binding = 4) uniform usamplerBuffer map_quads[TRN_MAX_MAP_CHUNKS];  // quad layout (R32_UINT)
 
 layout(push_constant) uniform Push {
     uint map_width;
@@ -74,6 +75,20 @@ uint band_word(uint c, uint i) {
     return map_chunks[7].words[i];
 }
 
+// Quad i of band c (quad layout). A texel fetch, unlike a storage-buffer read at a per-invocation
+// address, is a vector gather on lavapipe.
+uint band_quad(uint c, uint i) {
+    int at = int(i);
+    if (MAP_CHUNKS == 1u || c == 0u) return texelFetch(map_quads[0], at).r;
+    if (c == 1u) return texelFetch(map_quads[1], at).r;
+    if (c == 2u) return texelFetch(map_quads[2], at).r;
+    if (c == 3u) return texelFetch(map_quads[3], at).r;
+    if (c == 4u) return texelFetch(map_quads[4], at).r;
+    if (c == 5u) return texelFetch(map_quads[5], at).r;
+    if (c == 6u) return texelFetch(map_quads[6], at).r;
+    return texelFetch(map_quads[7], at).r;
+}
+
 // Byte `index` of band c (bytes layout).
 uint band_byte(uint c, uint index) { return (band_word(c, index >> 2u) >> ((index & 3u) * 8u)) & 0xFFu; }
 
@@ -82,7 +97,7 @@ vec4 fetch_quad(uint x, uint y) {
     uint c = MAP_CHUNKS == 1u ? 0u : y / pc.rows_per_chunk;
     uint i = (y - c * pc.rows_per_chunk) * pc.map_width + x;
     if (QUAD_MAP) {
-        uint w = band_word(c, i);
+        uint w = band_quad(c, i);
         return vec4(float(w & 0xFFu), float((w >> 8u) & 0xFFu), float((w >> 16u) & 0xFFu), float(w >> 24u));
     }
     uint j = i + pc.map_width;

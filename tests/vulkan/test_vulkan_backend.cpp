@@ -84,6 +84,32 @@ TEST(VulkanPaths, OtherWorkGroupSizesMatchReference) {
     }
 }
 
+TEST(VulkanPaths, ParticlesPerGroupMatchReference) {
+    TRN_REQUIRE_VULKAN();
+    // 150 poses: 3 and 16 leave a partly filled last group; 16 is more than a group of 8 invocations.
+    for (const char* count : {"1", "3", "16"}) {
+        SCOPED_TRACE(std::string("particles per group ") + count);
+        ScopedEnv group("TRN_VULKAN_WORKGROUP", "8");
+        auto dut = vulkan_with("TRN_VULKAN_PARTICLES_PER_GROUP", count);
+        EXPECT_NE(dut->info().details.find(std::string(" for ") + count + " particle"), std::string::npos) << dut->info().details;
+        scores_match_reference(*dut);
+    }
+}
+
+TEST(VulkanPaths, BytesMapLayoutMatchesReference) {
+    TRN_REQUIRE_VULKAN();
+    auto dut = vulkan_with("TRN_VULKAN_MAP_LAYOUT", "bytes");
+    scores_match_reference(*dut);
+}
+
+TEST(VulkanPaths, BadParticlesPerGroupIsAnError) {
+    TRN_REQUIRE_VULKAN();
+    for (const char* bad : {"0", "17", "x"}) {
+        ScopedEnv env("TRN_VULKAN_PARTICLES_PER_GROUP", bad);
+        EXPECT_THROW(default_registry().create("vulkan"), Error) << bad;
+    }
+}
+
 TEST(VulkanPaths, BadWorkGroupSizeIsAnError) {
     TRN_REQUIRE_VULKAN();
     ScopedEnv env("TRN_VULKAN_WORKGROUP", "48");
