@@ -159,16 +159,19 @@ std::size_t run_experiment(const ExperimentOptions& o) {
         wall_s += outputs.back().value("wall_s", 0.0);
         devices.insert(outputs.back().value("backend_device", std::string("?")));
     }
-    if (missing) {
+    if (missing && (!o.partial || outputs.empty())) {
         std::cerr << "experiment " << o.study << ": " << missing << " of " << jobs.size() << " jobs not finished; tables not built\n";
         return missing;
     }
     MergeContext mc{out, config, !o.no_plots};
-    const std::string markdown = study->merge(outputs, mc);
+    std::string markdown = study->merge(outputs, mc);
+    if (missing)
+        markdown = "**PARTIAL RUN: " + std::to_string(outputs.size()) + " of " + std::to_string(jobs.size()) +
+                   " jobs finished; cells are means over the finished jobs only.**\n\n" + markdown;
     std::ofstream md(out + "/results.md");
     md << markdown;
     Json prov{{"study", o.study}, {"seed", o.seed}, {"git_commit", git_commit()}, {"backend", o.backend},
-              {"backend_devices", devices}, {"jobs", jobs.size()}, {"job_wall_s_total", wall_s}, {"config", config}};
+              {"backend_devices", devices}, {"jobs", jobs.size()}, {"jobs_merged", outputs.size()}, {"job_wall_s_total", wall_s}, {"config", config}};
     write_json(out + "/provenance.json", prov);
     std::cout << markdown << "\ntables, plots and provenance.json in " << out << " (" << jobs.size() << " jobs, " << wall_s
               << " s of job time)\n";

@@ -22,6 +22,7 @@ struct ExperimentOptions {
     bool list_jobs = false;      // print one command per job and exit
     bool merge_only = false;     // only build tables from finished job outputs
     bool no_merge = false;       // run jobs only (cluster shards); merge later
+    bool partial = false;        // merge whatever jobs are finished (tables say so); for documented subsets
     bool no_plots = false;
     bool progress = true;        // progress bar on stderr
 };
