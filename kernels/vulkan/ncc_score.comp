@@ -161,13 +161,15 @@ void main() {
                 bool valid = px >= 0.0 && py >= 0.0 && px <= xmax && py <= ymax;
                 // Clamped so that invalid samples still read inside the map; a valid position is unchanged.
                 float j = map_value(clamp(px, 0.0, xmax), clamp(py, 0.0, ymax)) - shift[p];
-                float w = valid ? 1.0 : 0.0;
+                // Invalid samples add zeros (selects rather than multiplies by 0 / 1: measured faster on lavapipe).
+                j = valid ? j : 0.0;
+                float tv = valid ? t : 0.0;
                 n[p] += valid ? 1u : 0u;
-                rj[p] += w * j;
-                rjj[p] += w * (j * j);
-                rjt[p] += w * (j * t);
-                rt[p] += w * t;
-                rtt[p] += w * (t * t);
+                rj[p] += j;
+                rjj[p] += j * j;
+                rjt[p] += j * t;
+                rt[p] += tv;
+                rtt[p] += tv * t;
             }
         }
         for (uint p = 0u; p < PARTICLES_PER_GROUP; ++p) {
