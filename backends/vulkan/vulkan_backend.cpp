@@ -85,7 +85,7 @@ VulkanBackend::VulkanBackend(int index)
     score_group_size_ = choose_score_group_size(ctx);
     particles_per_group_ = choose_particles_per_group(ctx);
     sobel_group_x_ = std::min<std::uint32_t>(64, ctx.limits().maxComputeWorkGroupSize[0]);
-    info_.details += ", scoring work-group " + std::to_string(score_group_size_) + " for " +
+    info_.details += ", scoring work-group " + std::to_string(score_group_size_) + " for up to " +
                      std::to_string(particles_per_group_) + " particle(s)" +
                      (subgroups ? " with subgroup reduction" : " with shared-memory reduction");
 

@@ -56,7 +56,7 @@ private:
     std::unique_ptr<Recorder> recorder_;
     std::unique_ptr<Kernel> ncc_kernel_, sobel_kernel_;
     std::uint32_t score_group_size_ = 64;
-    std::uint32_t particles_per_group_ = 1;
+    std::uint32_t particles_per_group_ = 1;  // at most; see do_score
     std::uint32_t sobel_group_x_ = 64, sobel_group_y_ = 1;
     // Grow-only per-call buffers.
     std::unique_ptr<Mirror> samples_, affines_, sums_;

@@ -30,7 +30,12 @@ void VulkanBackend::do_score(const MapStorage& storage, const ScoringPlan& plan,
     const std::size_t samples = plan.sample_count(), particles = poses.size();
     const auto& lim = ctx.limits();
     const std::size_t max_groups = std::size_t(lim.maxComputeWorkGroupCount[0]) * lim.maxComputeWorkGroupCount[1];
-    const std::size_t groups = (particles + particles_per_group_ - 1) / particles_per_group_;
+    // Batches smaller than a group get fewer particles per group (halving, so at most a few
+    // pipelines): a group's spare slots repeat its last particle, which is wasted work. (Splitting
+    // small batches further so that more lavapipe threads get a group measured no faster.)
+    std::uint32_t per_group = particles_per_group_;
+    while (per_group > 1 && particles < per_group) per_group /= 2;
+    const std::size_t groups = (particles + per_group - 1) / per_group;
     if (groups > max_groups)
         throw Error("score: " + std::to_string(particles) + " poses exceed the " + std::to_string(max_groups) +
                     " work-groups one dispatch on " + info_.name + " may have; score them in batches");
@@ -71,7 +76,7 @@ void VulkanBackend::do_score(const MapStorage& storage, const ScoringPlan& plan,
     // Specialization constants 0..6 of ncc_score.comp.
     const VkPipeline pipeline = ncc_kernel_->pipeline(
         {score_group_size_, static_cast<std::uint32_t>(samples), static_cast<std::uint32_t>(map.chunks.size()),
-         particles_per_group_, static_cast<std::uint32_t>(plan.width), plan.dense ? 1u : 0u, map.quads ? 1u : 0u});
+         per_group, static_cast<std::uint32_t>(plan.width), plan.dense ? 1u : 0u, map.quads ? 1u : 0u});
     const ScorePush push{static_cast<std::uint32_t>(map.width()), static_cast<std::uint32_t>(map.height()),
                          map.rows_per_chunk, static_cast<std::uint32_t>(particles), plan.cx, plan.cy};
     const std::uint32_t gx = static_cast<std::uint32_t>(std::min<std::size_t>(groups, lim.maxComputeWorkGroupCount[0]));

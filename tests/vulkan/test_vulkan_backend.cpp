@@ -91,8 +91,23 @@ TEST(VulkanPaths, ParticlesPerGroupMatchReference) {
         SCOPED_TRACE(std::string("particles per group ") + count);
         ScopedEnv group("TRN_VULKAN_WORKGROUP", "8");
         auto dut = vulkan_with("TRN_VULKAN_PARTICLES_PER_GROUP", count);
-        EXPECT_NE(dut->info().details.find(std::string(" for ") + count + " particle"), std::string::npos) << dut->info().details;
+        EXPECT_NE(dut->info().details.find(std::string(" for up to ") + count + " particle"), std::string::npos) << dut->info().details;
         scores_match_reference(*dut);
+    }
+}
+
+TEST(VulkanPaths, BatchesSmallerThanAGroupMatchReference) {
+    TRN_REQUIRE_VULKAN();
+    ScopedEnv per_group("TRN_VULKAN_PARTICLES_PER_GROUP", "8");  // 1, 3 and 7 poses take the smaller groups
+    auto dut = default_registry().create("vulkan");
+    auto ref = default_registry().create("cpu-ref");
+    const PaddedGray map = textured_image(301, 207, 61);
+    const PaddedGray templ = textured_image(41, 29, 62);
+    for (int count : {1, 3, 7}) {
+        SCOPED_TRACE(std::to_string(count) + " poses");
+        std::vector<Pose> poses;
+        for (int i = 0; i < count; ++i) poses.push_back({140.0f + 3 * i, 95.0f + 2 * i, 0.3f * i, 1.0f + 0.05f * i});
+        expect_scores_match(*dut, *ref, map.view(), templ.view(), poses, {});
     }
 }
 
