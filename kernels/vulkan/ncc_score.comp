@@ -13,17 +13,17 @@
 //
 // Why it is shaped this way: on lavapipe every storage-buffer read at a per-invocation address
 // costs a scalar loop over the SIMD lanes, so the kernel keeps such reads few: the template value
-// is read once for several particles, and with the quad map layout one 32-bit word holds the whole
-// 2x2 bilinear footprint. Several particles per group also give the CPU longer straight-line work.
-// On GPUs the host picks one particle per group and large groups.
+// is read once for several particles, and the map is read by one texel fetch per sample (a 32-bit
+// word with the whole 2x2 bilinear footprint). Several particles per group also give the CPU longer
+// straight-line work. On GPUs the host picks one particle per group and large groups.
 //
-// Map layouts (specialization constant QUAD_MAP):
-//   quad: word y*W + x holds pixels (x, y), (x+1, y), (x, y+1), (x+1, y+1) in bytes 0..3, for rows
-//         0..H-2; band c holds quad rows [c*R, c*R + R).
-//   bytes: four pixels to a word, row-major; band c holds rows [c*R, c*R + R] (one row of overlap,
-//         so the 2x2 footprint of any sample lies in one band). Used when quads would not fit.
-// Bands are separate storage buffers (at most TRN_MAX_MAP_CHUNKS) so that a 16384^2 map fits
-// under maxStorageBufferRange.
+// Map layouts (specialization constant QUAD_MAP), each in up to TRN_MAX_MAP_CHUNKS row bands so
+// that a 16384^2 map fits the device's buffer limits:
+//   quad (binding 4, uniform texel buffers, R32_UINT): texel y*W + x holds pixels (x, y), (x+1, y),
+//         (x, y+1), (x+1, y+1) in bytes 0..3, for rows 0..H-2; band c holds quad rows [c*R, c*R + R).
+//   bytes (binding 3, storage buffers): four pixels to a word, row-major; band c holds rows
+//         [c*R, c*R + R] (one row of overlap, so the 2x2 footprint of any sample lies in one band).
+//         Used when quads would need more bands than that (4x the memory of bytes).
 #extension GL_GOOGLE_include_directive : require
 #ifdef TRN_SUBGROUP_REDUCE
 #extension GL_KHR_shader_subgroup_basic : require
