@@ -6,19 +6,12 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "write_text.hpp"
 #include "trn/energy/compare.hpp"
 #include "trn/energy/plots.hpp"
 #include "trn/error.hpp"
 
 namespace trn::cli {
-namespace {
-
-void write_file(const std::string& path, const std::string& text) {
-    std::ofstream f(path, std::ios::binary);
-    if (!f || !(f << text)) throw Error(path + ": cannot write");
-}
-
-}  // namespace
 
 void add_energy_compare_command(CLI::App* energy) {
     struct Args {
@@ -41,11 +34,11 @@ void add_energy_compare_command(CLI::App* energy) {
         std::filesystem::create_directories(a->out, ec);
         if (ec) throw Error(a->out + ": cannot create folder (" + ec.message() + ")");
         const std::string md = energy::tables_markdown(cmp);
-        write_file(a->out + "/tables.md", md);
-        write_file(a->out + "/table1_energy.csv", energy::energy_table_csv(cmp));
-        write_file(a->out + "/table2_shapiro_wilk.csv", energy::shapiro_table_csv(cmp));
-        write_file(a->out + "/table3_t_tests.csv", energy::ttest_table_csv(cmp));
-        write_file(a->out + "/summary.json", energy::comparison_json(cmp));
+        write_text_file(a->out + "/tables.md", md);
+        write_text_file(a->out + "/table1_energy.csv", energy::energy_table_csv(cmp));
+        write_text_file(a->out + "/table2_shapiro_wilk.csv", energy::shapiro_table_csv(cmp));
+        write_text_file(a->out + "/table3_t_tests.csv", energy::ttest_table_csv(cmp));
+        write_text_file(a->out + "/summary.json", energy::comparison_json(cmp));
         std::cout << md << "\nwrote " << a->out << "/{tables.md,table1_energy.csv,table2_shapiro_wilk.csv,table3_t_tests.csv,summary.json}\n";
         if (a->no_plots) return;
         std::vector<energy::PlotSeries> e, t;

@@ -6,19 +6,12 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "write_text.hpp"
 #include "trn/energy/plots.hpp"
 #include "trn/energy/run_report.hpp"
 #include "trn/error.hpp"
 
 namespace trn::cli {
-namespace {
-
-void write_file(const std::string& path, const std::string& text) {
-    std::ofstream f(path, std::ios::binary);
-    if (!f || !(f << text)) throw Error(path + ": cannot write");
-}
-
-}  // namespace
 
 void add_energy_integrate_command(CLI::App* energy) {
     struct Args {
@@ -56,8 +49,8 @@ void add_energy_integrate_command(CLI::App* energy) {
         const energy::RunReport r = energy::integrate_files(a->log, a->format, opts, a->markers, q);
         const std::string json = energy::run_report_json(r);
         if (a->json.empty()) std::cout << json;
-        else write_file(a->json, json);
-        if (!a->csv.empty()) write_file(a->csv, energy::run_report_csv(r));
+        else write_text_file(a->json, json);
+        if (!a->csv.empty()) write_text_file(a->csv, energy::run_report_csv(r));
         // Summary on stderr so stdout stays pure JSON.
         double sum = 0;
         std::size_t usable = 0;

@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include "commands.hpp"
+#include "write_text.hpp"
 #include "trn/energy/parsers.hpp"
 #include "trn/energy/sysfs_sampler.hpp"
 #include "trn/error.hpp"
@@ -40,8 +41,7 @@ void add_energy_sample_command(CLI::App* energy) {
             std::fputs(text.c_str(), stdout);
             return;
         }
-        std::ofstream f(a->out, std::ios::binary);
-        if (!f || !(f << text)) throw Error(a->out + ": cannot write");
+        write_text_file(a->out, text);
         std::fprintf(stderr, "%s: %zu samples -> %s\n", src.describe().c_str(), trace.size(), a->out.c_str());
     });
 }
