@@ -44,14 +44,7 @@ public:
 
     Json run_job(const Json& c, const Json& p, JobContext& ctx) const override {
         const bool ortho = p.at("map") == "orthophoto";
-        std::shared_ptr<const sim::Map> map, world;
-        if (ortho) {
-            map = orthophoto_map();
-            world = aged_orthophoto(2, ctx.seed);
-        } else {
-            map = procedural_map(sim::TerrainStyle::Forest, ctx.seed, 2008, 1200);
-            world = procedural_map(sim::TerrainStyle::Forest, ctx.seed, 2010, 1200);
-        }
+        const auto [map, world] = study_map_pair(ortho, ctx.seed);
         const sim::Camera camera;
         const double altitude = c.at("altitude_m"), scale = sim::template_scale(camera, altitude, map->metres_per_pixel);
         const double margin = 0.5 * std::hypot(camera.width, camera.height) * scale + 2;

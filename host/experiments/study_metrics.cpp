@@ -51,14 +51,7 @@ public:
     Json run_job(const Json& c, const Json& p, JobContext& ctx) const override {
         const bool ortho = p.at("map") == "orthophoto";
         const int trial = p.at("trial");
-        std::shared_ptr<const sim::Map> map, world;
-        if (ortho) {
-            map = orthophoto_map();
-            world = aged_orthophoto(2, ctx.seed);
-        } else {
-            map = procedural_map(sim::TerrainStyle::Forest, ctx.seed, 2008, 1200);
-            world = procedural_map(sim::TerrainStyle::Forest, ctx.seed, 2010, 1200);
-        }
+        const auto [map, world] = study_map_pair(ortho, ctx.seed);
         const double mpp = map->metres_per_pixel, altitude = c.at("altitude_m"), radius_px = c.at("radius_m").get<double>() / mpp;
         const sim::Camera camera;
         const double scale = sim::template_scale(camera, altitude, mpp);

@@ -109,4 +109,9 @@ void add_dissertation_noise(GrayImage& image, std::uint64_t seed, double salt, d
     }
 }
 
+MapPair study_map_pair(bool orthophoto, std::uint64_t seed) {
+    if (orthophoto) return {orthophoto_map(), aged_orthophoto(2, seed)};
+    return {procedural_map(sim::TerrainStyle::Forest, seed, 2008, 1200), procedural_map(sim::TerrainStyle::Forest, seed, 2010, 1200)};
+}
+
 }  // namespace trn::experiments

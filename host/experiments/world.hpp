@@ -37,6 +37,13 @@ std::shared_ptr<const sim::Map> orthophoto_map();
 // The orthophoto aged by `years` with map_ageing (cached).
 std::shared_ptr<const sim::Map> aged_orthophoto(double years, std::uint64_t seed);
 
+// The localization map and the two-years-newer world the frames are rendered from, as the metrics
+// and heading studies use them: the orthophoto, or a 1200 m procedural forest (2008 vs 2010).
+struct MapPair {
+    std::shared_ptr<const sim::Map> map, world;
+};
+MapPair study_map_pair(bool orthophoto, std::uint64_t seed);
+
 // A level camera frame over `map` at map pixel (x, y), compass heading yaw, with the simulator's
 // sensor noise (2% of full scale) seeded by noise_seed.
 GrayImage render_at(const sim::Map& map, const sim::Camera& camera, double x, double y, double yaw, double altitude_m,
