@@ -1,0 +1,45 @@
+#pragma once
+// Files written completely or not at all. Every trnkit writer goes through here:
+//  - the bytes go to a temporary name in the destination's own folder ("<name>.tmp-<pid>-<n>"),
+//  - every write, the flush and the close are checked (a full disk or a file-size limit is an Error
+//    naming the destination, never a silently cut file),
+//  - rename() publishes the complete file; on any failure the temporary is removed and an earlier
+//    file of that name is left as it was.
+#include <sstream>
+#include <string>
+#include <string_view>
+
+namespace trn::io {
+
+class AtomicFile {
+public:
+    explicit AtomicFile(std::string path);  // the destination; nothing is opened until commit()
+    ~AtomicFile();                          // an uncommitted file leaves no trace
+    AtomicFile(const AtomicFile&) = delete;
+    AtomicFile& operator=(const AtomicFile&) = delete;
+
+    std::ostream& stream() { return buffer_; }  // text goes here first
+    template <class T>
+    AtomicFile& operator<<(const T& v) {
+        buffer_ << v;
+        return *this;
+    }
+    void commit();  // write the temporary, check, rename; throws trn::Error naming path()
+    const std::string& path() const { return path_; }
+
+private:
+    std::string path_;
+    std::ostringstream buffer_;
+    bool committed_ = false;
+};
+
+// The whole file in one call (same rules as AtomicFile).
+void write_file_atomic(const std::string& path, std::string_view bytes);
+
+// A temporary name next to `path` (same folder, so rename() stays on one file system).
+std::string temporary_sibling(const std::string& path);
+
+// Writes `bytes` to an already-open descriptor, retrying short writes; throws naming `what` on error.
+void write_all(int fd, std::string_view bytes, const std::string& what);
+
+}  // namespace trn::io
