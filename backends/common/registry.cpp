@@ -6,6 +6,8 @@
 #include <cstdlib>
 #include <string>
 
+#include "trn/parse_number.hpp"
+
 namespace trn {
 namespace {
 
@@ -73,10 +75,12 @@ std::unique_ptr<Backend> BackendRegistry::create(std::string_view spec) const {
     if (selector.empty()) {
         index = 0;
     } else if (all_digits(selector)) {
-        index = std::stoi(selector);
-        if (index >= static_cast<int>(devices.size()))
+        // Overflow-safe: "vulkan:99999999999999999999" is an index out of range, not a stoi exception.
+        const auto n = parse_whole_number(selector);
+        if (!n || *n >= devices.size())
             throw BackendUnavailable("backend '" + std::string(spec) + "': device index " + selector + " out of range (" +
                                      std::to_string(devices.size()) + " device(s))");
+        index = static_cast<int>(*n);
     } else {
         const std::string needle = lower(selector);
         for (std::size_t i = 0; i < devices.size() && index < 0; ++i)

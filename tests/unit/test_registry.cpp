@@ -40,6 +40,8 @@ TEST(Registry, RefusesClearlyAndNeverFallsBack) {
     };
     EXPECT_NE(message("cuda").find("not built into this trnkit"), std::string::npos);
     EXPECT_NE(message("cpu:3").find("out of range"), std::string::npos);
+    // An index too big for any integer is out of range too, not a std::stoi exception.
+    EXPECT_NE(message("cpu:99999999999999999999").find("device index 99999999999999999999 out of range"), std::string::npos);
     EXPECT_NE(message("cpu:nosuch").find("no cpu device name or driver contains 'nosuch'"), std::string::npos);
 }
 
