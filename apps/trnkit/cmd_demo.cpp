@@ -9,6 +9,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "options.hpp"
 #include "progress.hpp"
 #include "trn/error.hpp"
 #include "trn/filter/backend_choice.hpp"
@@ -115,14 +116,16 @@ void add_demo_command(CLI::App& app) {
     auto a = std::make_shared<DemoArgs>();
     auto* cmd = app.add_subcommand("demo", "Simulate a ~2 km flight over the built-in procedural map and localize it (DPC-PFL)");
     cmd->add_option("--scenario", a->scenario, "Scenario preset (terrain, shape, altitude)")->capture_default_str();
-    cmd->add_option("--distance-km", a->distance_km, "Distance to fly")->capture_default_str();
+    cmd->add_option("--distance-km", a->distance_km, "Distance to fly")->capture_default_str()->check(real_in(0, 100, Open::low));
     cmd->add_option("--backend", a->backend, "Scoring backend or 'fastest'")->capture_default_str();
-    cmd->add_option("--rate", a->rate_hz, "Filter rate in Hz")->capture_default_str();
-    cmd->add_option("--template-width", a->template_width, "Camera frames are downscaled to this width before scoring")->capture_default_str();
-    cmd->add_option("--sparse", a->sparse, "Share of template pixels scored (1 = dense)")->capture_default_str()->check(CLI::Range(1e-4, 1.0));
-    cmd->add_option("--map-year", a->map_year, "Year of the localization map")->capture_default_str();
-    cmd->add_option("--flight-year", a->flight_year, "Year the flight sees")->capture_default_str();
-    cmd->add_option("--seed", a->seed, "Seed of map, flight and filter")->capture_default_str();
+    cmd->add_option("--rate", a->rate_hz, "Filter rate in Hz")->capture_default_str()->check(real_in(0, 1000, Open::low));
+    cmd->add_option("--template-width", a->template_width, "Camera frames are downscaled to this width before scoring")
+        ->capture_default_str()
+        ->transform(whole_in(8, kMaxTemplateWidth));
+    cmd->add_option("--sparse", a->sparse, "Share of template pixels scored (1 = dense)")->capture_default_str()->check(real_in(1e-4, 1.0));
+    cmd->add_option("--map-year", a->map_year, "Year of the localization map")->capture_default_str()->transform(whole_in(kMinYear, kMaxYear));
+    cmd->add_option("--flight-year", a->flight_year, "Year the flight sees")->capture_default_str()->transform(whole_in(kMinYear, kMaxYear));
+    cmd->add_option("--seed", a->seed, "Seed of map, flight and filter")->capture_default_str()->transform(any_seed());
     cmd->add_option("--out", a->out, "Output folder (default: <temp>/trnkit-demo)");
     cmd->add_flag("--no-plots", a->no_plots, "Skip the gnuplot step");
     cmd->callback([a] { demo(*a); });

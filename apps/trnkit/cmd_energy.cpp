@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "options.hpp"
 #include "trn/energy/integrate.hpp"
 #include "trn/energy/parsers.hpp"
 #include "trn/error.hpp"
@@ -46,10 +47,11 @@ void add_energy_command(CLI::App& app) {
     });
     auto* span = energy->add_subcommand("integrate-span", "Energy of [--start, --end] (seconds on the log's clock)");
     add_log_options(span);
-    span->add_option("--start", a->start, "Start time (s)")->required();
-    span->add_option("--end", a->end, "End time (s)")->required();
+    span->add_option("--start", a->start, "Start time (s)")->required()->check(real_in(-1e12, 1e12));
+    span->add_option("--end", a->end, "End time (s)")->required()->check(real_in(-1e12, 1e12));
     span->add_flag("--hold", a->hold, "Zero-order hold instead of the trapezoid rule");
     span->callback([a] {
+        if (!(a->end > a->start)) throw Error("--end " + std::to_string(a->end) + " must be after --start " + std::to_string(a->start));
         const auto tr = energy::read_power_log(a->log, a->format, energy::parse_option_list(a->opts));
         const auto e = energy::integrate_interval(tr, a->start, a->end, a->hold ? energy::Rule::Hold : energy::Rule::Trapezoid);
         if (!e.covered) throw trn::Error(a->log + ": the span [" + std::to_string(a->start) + ", " + std::to_string(a->end) + "] s is not covered by the log");

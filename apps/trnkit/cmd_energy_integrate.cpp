@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "options.hpp"
 #include "write_text.hpp"
 #include "trn/energy/plots.hpp"
 #include "trn/energy/run_report.hpp"
@@ -27,12 +28,13 @@ void add_energy_integrate_command(CLI::App* energy) {
     c->add_option("--format", a->format, "auto or a format name (see docs/ENERGY.md)")->capture_default_str();
     c->add_option("--opt", a->opts, "Parser option KEY=VALUE (repeatable)");
     c->add_option("--markers", a->markers, "Marker file written by trnkit frames")->required();
-    auto* offset = c->add_option("--offset", a->offset, "Log time = marker time + OFFSET (s); with --align auto: centre of the search");
+    auto* offset = c->add_option("--offset", a->offset, "Log time = marker time + OFFSET (s); with --align auto: centre of the search")
+                       ->check(real_in(-1e12, 1e12));
     c->add_option("--align", a->align, "auto: estimate offset and drift from the busy/idle pattern")->check(CLI::IsMember({"auto"}));
-    c->add_option("--search", a->search, "With --align auto: search OFFSET +- this many seconds (default: everywhere)");
+    c->add_option("--search", a->search, "With --align auto: search OFFSET +- this many seconds (default: everywhere)")->check(real_in(0, 1e12));
     c->add_option("--clock", a->clock, "Marker clock: real (CLOCK_REALTIME) or mono (CLOCK_MONOTONIC)")->capture_default_str()->check(CLI::IsMember({"real", "mono"}));
     c->add_flag("--hold", a->hold, "Zero-order hold instead of the trapezoid rule");
-    c->add_option("--min-samples", a->min_samples, "Frames with fewer samples are flagged")->capture_default_str();
+    c->add_option("--min-samples", a->min_samples, "Frames with fewer samples are flagged")->capture_default_str()->transform(whole_in(0, 1000000));
     c->add_option("--platform", a->platform, "Platform label for compare (default from the markers: backend/kernel/size)");
     c->add_option("--json", a->json, "Write the run report JSON here (default: standard output)");
     c->add_option("--csv", a->csv, "Write per-frame CSV here");

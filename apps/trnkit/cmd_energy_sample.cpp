@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include "commands.hpp"
+#include "options.hpp"
 #include "write_text.hpp"
 #include "trn/energy/parsers.hpp"
 #include "trn/energy/sysfs_sampler.hpp"
@@ -22,8 +23,8 @@ void add_energy_sample_command(CLI::App* energy) {
     auto* c = energy->add_subcommand("sample", "Sample power live from hwmon (ina2xx, ina3221) or RAPL powercap into a trnkit power log");
     c->add_option("--source", a->source, "hwmon:NAME[:CHANNEL] or rapl:NAME (see --list)");
     c->add_flag("--list", a->list, "List the power sources found and exit");
-    c->add_option("--period-ms", a->period_ms, "Polling period (ms)")->capture_default_str();
-    c->add_option("--duration-s", a->duration_s, "How long to sample (s)")->capture_default_str();
+    c->add_option("--period-ms", a->period_ms, "Polling period (ms)")->capture_default_str()->check(real_in(0, 60000, Open::low));
+    c->add_option("--duration-s", a->duration_s, "How long to sample (s)")->capture_default_str()->check(real_in(0, 604800, Open::low));
     c->add_option("-o,--out", a->out, "Power log to write (default: standard output)");
     c->add_option("--sysfs-root", a->root, "sysfs root (for tests and containers)")->capture_default_str();
     c->callback([a] {

@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "options.hpp"
 #include "trn/error.hpp"
 #include "trn/experiments/experiment.hpp"
 
@@ -15,8 +16,19 @@ void add_experiment_command(CLI::App& app) {
     cmd->add_flag("--quick", a->quick, "Reduced but meaningful version (CI)");
     cmd->add_option("--out", a->out, "Output folder (default: experiments/NAME[-quick])");
     cmd->add_option("--backend", a->backend, "Scoring backend (cpu, cpu-ref, opencl:0, vulkan:0 ...)")->capture_default_str();
-    cmd->add_option("--seed", a->seed, "Seed of maps, flights and filters")->capture_default_str();
-    cmd->add_option("--shard", a->shard, "Run the i-th of n slices of the job list (i/n)")->capture_default_str();
+    cmd->add_option("--seed", a->seed, "Seed of maps, flights and filters")->capture_default_str()->transform(any_seed());
+    cmd->add_option("--shard", a->shard, "Run the i-th of n slices of the job list (i/n)")
+        ->capture_default_str()
+        ->check(CLI::Validator(
+            [](std::string& text) -> std::string {
+                try {
+                    experiments::parse_shard(text);
+                } catch (const Error& e) {
+                    return e.what();
+                }
+                return {};
+            },
+            "i/n"));
     cmd->add_option("--job", a->job, "Run only this job (ids from --list-jobs)");
     cmd->add_flag("--list-jobs", a->list_jobs, "Print one command per job (for GNU parallel / Slurm), then the merge command");
     cmd->add_flag("--merge", a->merge_only, "Only build the tables from finished job outputs");

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "options.hpp"
 #include "trn/energy/frame_runner.hpp"
 #include "trn/error.hpp"
 #include "trn/registry.hpp"
@@ -51,12 +52,16 @@ void add_frames_command(CLI::App& app) {
     auto* cmd = app.add_subcommand("frames", "Run a kernel K times with idle gaps and a sync pattern, writing frame markers (energy studies)");
     cmd->add_option("--kernel", a->kernel, "sobel or ncc")->capture_default_str()->check(CLI::IsMember({"sobel", "ncc"}));
     cmd->add_option("--size", a->size, "Sobel image size: 480p, 720p or 1080p")->capture_default_str();
-    cmd->add_option("--particles", a->particles, "NCC: particles scored per frame")->capture_default_str();
+    cmd->add_option("--particles", a->particles, "NCC: particles scored per frame")->capture_default_str()->transform(whole_in(1, kMaxParticles));
     cmd->add_option("-b,--backend", a->backend, "Backend: cpu-ref, cpu, opencl[:N|:name], vulkan[:N|:name]")->capture_default_str();
-    cmd->add_option("-k,--frames", a->frames, "Frames (K)")->capture_default_str();
-    cmd->add_option("--idle-ms", a->idle_ms, "Idle gap after each frame (ms)")->capture_default_str();
-    cmd->add_option("--lead-idle-ms", a->lead_idle_ms, "Idle before the sync pattern and after the last frame (ms)")->capture_default_str();
-    cmd->add_option("--sync-unit-ms", a->sync_unit_ms, "Sync pattern unit u: bursts of 3u,1u,2u (ms; 0 = none)")->capture_default_str();
+    cmd->add_option("-k,--frames", a->frames, "Frames (K)")->capture_default_str()->transform(whole_in(1, 1000000));
+    cmd->add_option("--idle-ms", a->idle_ms, "Idle gap after each frame (ms)")->capture_default_str()->check(real_in(0, 600000));
+    cmd->add_option("--lead-idle-ms", a->lead_idle_ms, "Idle before the sync pattern and after the last frame (ms)")
+        ->capture_default_str()
+        ->check(real_in(0, 600000));
+    cmd->add_option("--sync-unit-ms", a->sync_unit_ms, "Sync pattern unit u: bursts of 3u,1u,2u (ms; 0 = none)")
+        ->capture_default_str()
+        ->check(real_in(0, 60000));
     cmd->add_option("-o,--out", a->out, "Marker file to write")->capture_default_str();
     cmd->callback([a] {
         if (a->particles <= 0) throw Error("--particles must be positive");

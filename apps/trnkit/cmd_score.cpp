@@ -2,29 +2,31 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
-#include <sstream>
+#include <optional>
+#include <string_view>
 
 #include "commands.hpp"
+#include "options.hpp"
 #include "trn/io/image_io.hpp"
 #include "trn/io/pose_csv.hpp"
+#include "trn/parse_number.hpp"
 #include "trn/registry.hpp"
 
 namespace trn::cli {
 namespace {
 
-// "dense", "random:FRACTION[:SEED]"
+// "dense", "random:FRACTION[:SEED]": FRACTION a finite share in (0, 1], SEED plain decimal digits
+// (parsed strictly, so "random:nan" or a seed of -1 is refused instead of read as something else).
 Sampling parse_sampling(const std::string& text) {
     if (text == "dense") return Sampling::dense();
-    if (text.rfind("random:", 0) == 0) {
-        std::stringstream ss(text.substr(7));
-        double fraction = 0;
-        unsigned long long seed = 1;
-        char colon = 0;
-        if (!(ss >> fraction) || ((ss >> colon) && (colon != ':' || !(ss >> seed))) || !ss.eof())
-            throw Error("--sampling '" + text + "': expected dense or random:FRACTION[:SEED]");
-        return Sampling::random(fraction, seed);
-    }
-    throw Error("--sampling '" + text + "': expected dense or random:FRACTION[:SEED]");
+    const std::string why = "--sampling '" + text + "': expected dense or random:FRACTION[:SEED] with FRACTION in (0, 1]";
+    if (text.rfind("random:", 0) != 0) throw Error(why);
+    const std::string_view rest = std::string_view(text).substr(7);
+    const std::size_t colon = rest.find(':');
+    const auto fraction = parse_finite_real(rest.substr(0, colon));
+    const auto seed = colon == std::string_view::npos ? std::optional<std::uint64_t>(1) : parse_whole_number(rest.substr(colon + 1));
+    if (!fraction || !(*fraction > 0 && *fraction <= 1) || !seed) throw Error(why);
+    return Sampling::random(*fraction, *seed);
 }
 
 }  // namespace
@@ -41,7 +43,9 @@ void add_score_command(CLI::App& app) {
     cmd->add_option("--poses", a->poses, "CSV with x,y,yaw,scale per line (map pixels, radians)")->required();
     cmd->add_option("-b,--backend", a->backend, "Backend: cpu-ref, cpu, opencl[:N|:name], vulkan[:N|:name]")->capture_default_str();
     cmd->add_option("--sampling", a->sampling, "dense or random:FRACTION[:SEED]")->capture_default_str();
-    cmd->add_option("--min-valid", a->min_valid, "Smallest share of samples inside the map for a valid particle")->capture_default_str();
+    cmd->add_option("--min-valid", a->min_valid, "Smallest share of samples inside the map for a valid particle")
+        ->capture_default_str()
+        ->check(real_in(0, 1));
     cmd->add_option("-o,--out", a->out, "Output CSV (default: standard output)");
     cmd->callback([a] {
         ScoreOptions options;
@@ -50,11 +54,18 @@ void add_score_command(CLI::App& app) {
         const GrayImage map = load_gray(a->map);
         const GrayImage templ = load_gray(a->templ);
         const std::vector<Pose> poses = read_poses_csv(a->poses);
+        if (poses.empty()) throw Error(a->poses + ": no poses to score");
         auto backend = default_registry().create(a->backend);
-        const MapHandle handle = backend->upload_map(map.view());
         std::vector<ParticleScore> scores(poses.size());
         PhaseTimes t;
-        backend->score(handle, templ.view(), poses, options, scores, &t);
+        try {
+            const MapHandle handle = backend->upload_map(map.view());
+            backend->score(handle, templ.view(), poses, options, scores, &t);
+        } catch (const BackendUnavailable&) {
+            throw;
+        } catch (const Error& e) {  // the library names poses by index and images by role; name the files
+            throw Error("--map " + a->map + ", --template " + a->templ + ", --poses " + a->poses + ": " + e.what());
+        }
 
         std::ofstream file;
         if (!a->out.empty()) {

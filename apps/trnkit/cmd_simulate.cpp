@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "commands.hpp"
+#include "options.hpp"
 #include "progress.hpp"
 #include "trn/error.hpp"
 #include "trn/sim/air_format.hpp"
@@ -148,19 +149,21 @@ void add_simulate_command(CLI::App& app) {
     auto* cmd = app.add_subcommand("simulate", "Simulate a UAV flight over a map and write an AIR dataset (or --read one back)");
     cmd->add_option("--scenario", a->scenario, "Preset: FL-200 FL-300 FR-200 FR-300 FC-200 FC-300 UL-200 ... UC-300");
     cmd->add_option("--map", a->map, "Orthophoto file to fly over (any image OpenCV reads)");
-    cmd->add_option("--mpp", a->mpp, "Map ground resolution, metres per pixel (required with --map; default 1 for procedural)");
-    cmd->add_option("--lat", a->lat, "Latitude of the map's top-left pixel");
-    cmd->add_option("--lon", a->lon, "Longitude of the map's top-left pixel");
+    cmd->add_option("--mpp", a->mpp, "Map ground resolution, metres per pixel (required with --map; default 1 for procedural)")
+        ->check(real_in(0, 1000, Open::low));
+    cmd->add_option("--lat", a->lat, "Latitude of the map's top-left pixel")->check(real_in(-90, 90));
+    cmd->add_option("--lon", a->lon, "Longitude of the map's top-left pixel")->check(real_in(-180, 180));
     cmd->add_option("--procedural", a->procedural, "Procedural map style: forest or urban (default: the scenario's terrain)");
-    cmd->add_option("--size-m", a->size_m, "Procedural map edge, metres (default: fits the scenario)");
-    cmd->add_option("--seed", a->seed, "Seed for the map, noise and sensors")->capture_default_str();
-    cmd->add_option("--map-year", a->map_year, "Render the frames from the map of this year (localize on the base year)");
-    cmd->add_option("--base-year", a->base_year, "Year of the localization map")->capture_default_str();
-    auto* frames = cmd->add_option("--frames", a->frames, "Number of frames (default: the scenario's 320 s)");
-    cmd->add_option("--seconds", a->seconds, "Seconds of flight instead of --frames")->excludes(frames);
-    cmd->add_option("--fov", a->fov, "Horizontal field of view, degrees")->capture_default_str();
-    cmd->add_option("--noise", a->noise, "Gaussian image noise, share of full scale")->capture_default_str();
-    cmd->add_option("--wobble-deg", a->wobble_deg, "Camera roll/pitch wobble (0: gimbal-stabilised)")->capture_default_str();
+    cmd->add_option("--size-m", a->size_m, "Procedural map edge, metres (default: fits the scenario)")->check(real_in(0, 20000, Open::low));
+    cmd->add_option("--seed", a->seed, "Seed for the map, noise and sensors")->capture_default_str()->transform(any_seed());
+    cmd->add_option("--map-year", a->map_year, "Render the frames from the map of this year (localize on the base year)")
+        ->transform(whole_in(kMinYear, kMaxYear));
+    cmd->add_option("--base-year", a->base_year, "Year of the localization map")->capture_default_str()->transform(whole_in(kMinYear, kMaxYear));
+    auto* frames = cmd->add_option("--frames", a->frames, "Number of frames (default: the scenario's 320 s)")->transform(whole_in(1, 200000));
+    cmd->add_option("--seconds", a->seconds, "Seconds of flight instead of --frames")->excludes(frames)->check(real_in(0, 4000, Open::low));
+    cmd->add_option("--fov", a->fov, "Horizontal field of view, degrees")->capture_default_str()->check(real_in(1, 170, Open::both));
+    cmd->add_option("--noise", a->noise, "Gaussian image noise, share of full scale")->capture_default_str()->check(real_in(0, 1));
+    cmd->add_option("--wobble-deg", a->wobble_deg, "Camera roll/pitch wobble (0: gimbal-stabilised)")->capture_default_str()->check(real_in(0, 45));
     cmd->add_option("-o,--out", a->out, "Output flight folder");
     cmd->add_option("--read", a->read, "Read an AIR flight folder back and check it, instead of simulating");
     cmd->callback([a] {

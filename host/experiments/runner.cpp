@@ -8,6 +8,7 @@
 
 #include "study.hpp"
 #include "trn/error.hpp"
+#include "trn/parse_number.hpp"
 #include "trn/experiments/experiment.hpp"
 #include "trn/registry.hpp"
 
@@ -30,14 +31,18 @@ std::unique_ptr<Study> make_study(const std::string& name) {
     throw Error("experiment: unknown study '" + name + "' (one of:" + names + ")");
 }
 
-void parse_shard(const std::string& text, std::size_t& index, std::size_t& count) {
-    unsigned long i = 0, n = 0;
-    char tail = 0;
-    if (std::sscanf(text.c_str(), "%lu/%lu%c", &i, &n, &tail) != 2 || n == 0 || i == 0 || i > n)
-        throw Error("experiment: --shard '" + text + "' must be i/n with 1 <= i <= n");
-    index = i - 1;
-    count = n;
+}  // namespace
+
+Shard parse_shard(const std::string& text) {
+    const std::size_t slash = text.find('/');
+    const auto i = parse_whole_number(std::string_view(text).substr(0, slash));
+    const auto n = slash == std::string::npos ? std::nullopt : parse_whole_number(std::string_view(text).substr(slash + 1));
+    if (!i || !n || *n == 0 || *i == 0 || *i > *n || *n > kMaxShards)
+        throw Error("experiment: --shard '" + text + "' must be i/n with 1 <= i <= n <= " + std::to_string(kMaxShards));
+    return {static_cast<std::size_t>(*i - 1), static_cast<std::size_t>(*n)};
 }
+
+namespace {
 
 Json read_json(const std::string& path) {
     std::ifstream in(path);
@@ -123,10 +128,9 @@ std::size_t run_experiment(const ExperimentOptions& o) {
     };
 
     if (!o.merge_only) {
-        std::size_t shard_index = 0, shard_count = 1;
-        parse_shard(o.shard, shard_index, shard_count);
+        const Shard shard = parse_shard(o.shard);
         std::vector<const Json*> todo;
-        for (std::size_t i = shard_index; i < jobs.size(); i += shard_count)
+        for (std::size_t i = shard.index; i < jobs.size(); i += shard.count)
             if ((o.job.empty() || jobs[i].at("id") == o.job) && !finished(jobs[i])) todo.push_back(&jobs[i]);
         if (!todo.empty()) {
             std::unique_ptr<Backend> backend = default_registry().create(o.backend);

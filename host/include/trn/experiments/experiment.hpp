@@ -5,6 +5,7 @@
 // `merge` turns the job outputs into Markdown + CSV tables with the dissertation's numbers in
 // adjacent columns, gnuplot plots and a provenance JSON. A merge refuses job outputs whose
 // configuration differs from the one asked for.
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -28,6 +29,14 @@ struct ExperimentOptions {
 };
 
 std::vector<std::string> study_names();
+
+// --shard i/n: run jobs i-1, i-1+n, ... Parsed strictly (decimal digits, no wrap, no overflow);
+// throws trn::Error naming the option otherwise.
+inline constexpr std::size_t kMaxShards = 1'000'000;
+struct Shard {
+    std::size_t index = 0, count = 1;  // 0-based slice index, number of slices
+};
+Shard parse_shard(const std::string& text);
 
 // Runs (part of) a study as the options say; returns the number of jobs still missing (0 when the
 // tables were built). Throws trn::Error naming the bad option or the inconsistent job output.
