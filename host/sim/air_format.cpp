@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <istream>
 #include <nlohmann/json.hpp>
+#include <utility>
 
 #include "trn/error.hpp"
 
@@ -70,6 +71,51 @@ bool split_csv(const std::string& line, std::vector<std::string>& out, std::stri
     return true;
 }
 
+// Plausible magnitudes, far beyond any real flight but small enough that arithmetic on them stays
+// meaningful: a MapX of 1e300 is a broken file, not a position.
+constexpr double kMaxMetres = 1e7;       // Pose*, Svo*, RelativeAltitude: 10,000 km
+constexpr double kMaxMapPixels = 1e7;    // MapX, MapY
+
+// Why value v of column c is implausible ("" when it is fine).
+std::string implausible(std::size_t c, double v) {
+    const std::string& name = kColumns[c];
+    auto outside = [&](double lo, double hi) {
+        char buf[160];
+        std::snprintf(buf, sizeof buf, " %.6g is outside [%g, %g]", v, lo, hi);
+        return name + buf;
+    };
+    if (name == "Latitude") return v < -90 || v > 90 ? outside(-90, 90) : "";
+    if (name == "Longitude") return v < -180 || v > 180 ? outside(-180, 180) : "";
+    if (name == "MapX" || name == "MapY") return std::fabs(v) > kMaxMapPixels ? outside(-kMaxMapPixels, kMaxMapPixels) : "";
+    if (name.rfind("Imu", 0) == 0 || name.rfind("Orientation", 0) == 0) return "";  // see not_unit
+    return std::fabs(v) > kMaxMetres ? outside(-kMaxMetres, kMaxMetres) : "";
+}
+
+// A unit quaternion up to rounding; an all-zero or scaled one has no attitude to read.
+std::string not_unit(const Quaternion& q, const char* prefix) {
+    const double n = std::sqrt(q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w);
+    if (n > 0.9 && n < 1.1) return "";
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "%sX,%sY,%sZ,%sW has length %.6g; an attitude quaternion has length 1", prefix, prefix, prefix, prefix, n);
+    return buf;
+}
+
+// The frame number at the end of a file name's stem ("frame_000012.png" -> "12"), without leading
+// zeros, or "" when the stem does not end in digits. Compared by length then text, so numbers of
+// any length order correctly without overflow.
+std::string trailing_number(const std::string& filename) {
+    const std::size_t dot = filename.find_last_of('.');
+    const std::size_t slash = filename.find_last_of("/\\");
+    const std::size_t end = dot == std::string::npos || (slash != std::string::npos && dot < slash) ? filename.size() : dot;
+    std::size_t b = end;
+    while (b > 0 && filename[b - 1] >= '0' && filename[b - 1] <= '9') --b;
+    if (b == end) return "";
+    while (b + 1 < end && filename[b] == '0') ++b;
+    return filename.substr(b, end - b);
+}
+
+bool number_less_or_equal(const std::string& a, const std::string& b) { return a.size() != b.size() ? a.size() < b.size() : a <= b; }
+
 std::string quote_if_needed(const std::string& s) {
     if (s.find_first_of(",\"\n\r") == std::string::npos && s == trim(s)) return s;
     std::string q = "\"";
@@ -129,27 +175,59 @@ void write_flight_info(const std::string& path, const FlightInfo& info) {
     if (!out) throw Error(path + ": cannot write");
 }
 
+namespace {
+
+// An integer field of flight.json within [lo, hi]; a fraction, a string or 1e10 names the field.
+int int_field(const nlohmann::json& j, const char* key, int lo, int hi, const std::string& where) {
+    const nlohmann::json& v = j.at(key);
+    if (!v.is_number_integer() || v.get<long long>() < lo || v.get<long long>() > hi)
+        throw Error(where + key + " " + v.dump() + " must be a whole number in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    return static_cast<int>(v.get<long long>());
+}
+
+// A real field within the interval from lo to hi; `open` ends are excluded.
+enum class Ends { closed, open_low, open_both };
+double real_field(const nlohmann::json& j, const char* key, double lo, double hi, Ends ends, const std::string& where) {
+    const nlohmann::json& v = j.at(key);
+    const double d = v.is_number() ? v.get<double>() : NAN;
+    const bool low_ok = ends == Ends::closed ? d >= lo : d > lo, high_ok = ends == Ends::open_both ? d < hi : d <= hi;
+    if (!low_ok || !high_ok) {
+        char range[96];
+        std::snprintf(range, sizeof range, " must be a number in %s%g, %g%s", ends == Ends::closed ? "[" : "(", lo, hi,
+                      ends == Ends::open_both ? ")" : "]");
+        throw Error(where + key + " " + v.dump() + range);
+    }
+    return d;
+}
+
+}  // namespace
+
+// Every number is checked against what a flight can have, so a typo (fps 0, hfov 600, a camera of
+// 64000 pixels) is reported here with the file's name instead of as nonsense much later.
 FlightInfo read_flight_info(const std::string& path) {
     std::ifstream in(path);
     if (!in) throw Error(path + ": cannot open");
     FlightInfo info;
+    const std::string where = path + ": ";
     try {
         const nlohmann::json j = nlohmann::json::parse(in);
         info.scenario = j.value("scenario", "");
         info.map_file = j.value("map_file", "");
-        info.metres_per_pixel = j.at("metres_per_pixel").get<double>();
+        info.metres_per_pixel = real_field(j, "metres_per_pixel", 0, 1000, Ends::open_low, where);
         if (j.contains("origin"))
-            info.origin = GeoOrigin{j["origin"].at("latitude_deg").get<double>(), j["origin"].at("longitude_deg").get<double>()};
+            info.origin = GeoOrigin{real_field(j["origin"], "latitude_deg", -90, 90, Ends::closed, where + "origin."),
+                                    real_field(j["origin"], "longitude_deg", -180, 180, Ends::closed, where + "origin.")};
         const auto& c = j.at("camera");
-        info.camera = {c.at("width").get<int>(), c.at("height").get<int>(), c.at("hfov_deg").get<double>()};
-        info.fps = j.value("fps", 50.0);
-        info.map_year = j.value("map_year", 0);
-        info.rendered_year = j.value("rendered_year", 0);
+        info.camera = {int_field(c, "width", 2, 16384, where + "camera."), int_field(c, "height", 2, 16384, where + "camera."),
+                       real_field(c, "hfov_deg", 1, 170, Ends::open_both, where + "camera.")};
+        info.fps = j.contains("fps") ? real_field(j, "fps", 0, 1000, Ends::open_low, where) : 50.0;
+        for (auto [key, year] : {std::pair{"map_year", &info.map_year}, std::pair{"rendered_year", &info.rendered_year}})
+            if (j.contains(key) && (*year = int_field(j, key, 0, 3000, where)) != 0 && *year < 1900)
+                throw Error(where + key + " " + std::to_string(*year) + " must be 0 (unknown) or a year from 1900");
         info.seed = j.value("seed", std::uint64_t{0});
     } catch (const nlohmann::json::exception& e) {
         throw Error(path + ": not a valid flight description (" + e.what() + ")");
     }
-    if (!(info.metres_per_pixel > 0)) throw Error(path + ": metres_per_pixel must be > 0");
     info.camera.validate();
     return info;
 }
@@ -234,12 +312,28 @@ bool AirMetadataParser::next(AirRecord& r) {
             if (f.empty() || ec != std::errc() || ptr != f.data() + f.size())
                 throw Error(at + kColumns[c] + " '" + f.substr(0, 40) + "' is not a number");
             if (!std::isfinite(v)) throw Error(at + kColumns[c] + " is not finite");
+            if (const std::string why = implausible(c, v); !why.empty()) throw Error(at + why);
             *numeric_field(r, c) = v;
         }
+        for (const auto& [q, prefix] : {std::pair{&r.imu, "Imu"}, std::pair{&r.orientation, "Orientation"}})
+            if (const std::string why = not_unit(*q, prefix); !why.empty()) throw Error(at + why);
+        check_order(r.filename, at);
         return true;
     }
     if (in_.bad()) throw Error(source_ + ": read error");
     return false;
+}
+
+// Rows are frames in time order: a file name listed twice, or a frame number that does not grow
+// (frame_000005.png after frame_000007.png), means rows were duplicated or shuffled, which would
+// silently play the flight in the wrong order.
+void AirMetadataParser::check_order(const std::string& filename, const std::string& at) {
+    const auto [it, added] = first_line_of_.emplace(filename, line_);
+    if (!added) throw Error(at + filename + " is listed again (first on line " + std::to_string(it->second) + "); rows are duplicated");
+    const std::string number = trailing_number(filename);
+    if (!number.empty() && !last_number_.empty() && number_less_or_equal(number, last_number_))
+        throw Error(at + filename + " comes after " + last_filename_ + "; rows must be in frame (time) order");
+    if (!number.empty()) last_number_ = number, last_filename_ = filename;
 }
 
 // ---- reader ----
@@ -249,6 +343,12 @@ AirReader::AirReader(const std::string& folder) : folder_(folder) {
     file_ = std::make_unique<std::ifstream>(path);
     if (!*file_) throw Error(path + ": cannot open (is " + folder + " an AIR flight folder?)");
     parser_ = std::make_unique<AirMetadataParser>(*file_, path);
+}
+
+bool AirReader::next(AirRecord& r) {
+    if (parser_->next(r)) return ++rows_, true;
+    if (rows_ == 0) throw Error(folder_ + "/metadata.csv: no frame rows after the header; the flight is empty");
+    return false;
 }
 
 std::string AirReader::image_path(const AirRecord& r) const { return folder_ + "/" + r.filename; }

@@ -2,7 +2,9 @@
 // and a fuzzed reader that must either parse or throw trn::Error.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <filesystem>
 #include <sstream>
 
@@ -130,10 +132,10 @@ std::string error_of(const std::string& text) {
 }
 
 TEST(AirFormat, MalformedRowsAreReportedByLineNumber) {
-    const std::string h = kHeader, ok = kRow;
-    EXPECT_EQ(error_of(h + ok + ok), "");
+    const std::string h = kHeader, ok = kRow, ok2 = std::string("b") + (kRow + 1);
+    EXPECT_EQ(error_of(h + ok + ok2), "");
     EXPECT_NE(error_of(h + ok + "b.png,47,8\n").find("m.csv:3: expected 20 fields"), std::string::npos);
-    EXPECT_NE(error_of(h + ok + ok + "c.png,north,8.2,200,0,0,0.1,0.99,1,2,200,0,0,0.1,0.99,10.5,20.25,1.1,2.2,200.5\n")
+    EXPECT_NE(error_of(h + ok + ok2 + "c.png,north,8.2,200,0,0,0.1,0.99,1,2,200,0,0,0.1,0.99,10.5,20.25,1.1,2.2,200.5\n")
                   .find("m.csv:4: Latitude 'north' is not a number"),
               std::string::npos);
     EXPECT_NE(error_of(h + "\"a.png,47,8\n").find("m.csv:2: unterminated quoted field"), std::string::npos);
@@ -146,10 +148,108 @@ TEST(AirFormat, MalformedRowsAreReportedByLineNumber) {
     EXPECT_THROW(AirReader(temp_folder("nothing_here")), Error);
 }
 
+// A row of kRow's values with one column replaced (by name).
+std::string row_with(const std::string& column, const std::string& value, const std::string& filename = "a.png") {
+    std::vector<std::string> fields;
+    std::stringstream ss(std::string(kRow).substr(0, std::string(kRow).size() - 1));
+    for (std::string f; std::getline(ss, f, ',');) fields.push_back(f);
+    fields[0] = filename;
+    const auto& names = air_columns();
+    fields[std::find(names.begin(), names.end(), column) - names.begin()] = value;
+    std::string out;
+    for (const auto& f : fields) out += (out.empty() ? "" : ",") + f;
+    return out + "\n";
+}
+
+TEST(AirFormat, ImplausibleNumbersAreReportedByLineAndColumn) {
+    const std::string h = kHeader;
+    EXPECT_EQ(error_of(h + row_with("MapX", "1e6")), "");
+    EXPECT_NE(error_of(h + row_with("MapX", "1e300")).find("m.csv:2: MapX 1e+300 is outside [-1e+07, 1e+07]"), std::string::npos);
+    EXPECT_NE(error_of(h + kRow + row_with("Latitude", "91", "b.png")).find("m.csv:3: Latitude 91 is outside [-90, 90]"),
+              std::string::npos);
+    EXPECT_NE(error_of(h + row_with("Longitude", "-181")).find("Longitude -181 is outside [-180, 180]"), std::string::npos);
+    EXPECT_NE(error_of(h + row_with("SvoY", "-3e9")).find("m.csv:2: SvoY -3e+09 is outside"), std::string::npos);
+    EXPECT_NE(error_of(h + row_with("RelativeAltitude", "1e12")).find("RelativeAltitude 1e+12 is outside"), std::string::npos);
+    // An all-zero or scaled quaternion has no attitude: heading_from_quaternion would invent one.
+    EXPECT_NE(error_of(h + row_with("OrientationW", "5")).find("m.csv:2: OrientationX,OrientationY,OrientationZ,OrientationW has length 5"),
+              std::string::npos);
+    std::stringstream in(h + "a.png,47.1,8.2,200,0,0,0,0,1,2,200,0,0,0.1,0.99,10.5,20.25,1.1,2.2,200.5\n");
+    AirMetadataParser p(in, "q.csv");
+    AirRecord r;
+    try {
+        p.next(r);
+        ADD_FAILURE() << "a zero IMU quaternion was accepted";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("q.csv:2: ImuX,ImuY,ImuZ,ImuW has length 0"), std::string::npos) << e.what();
+    }
+}
+
+TEST(AirFormat, DuplicatedOrShuffledRowsAreRefused) {
+    const std::string h = kHeader;
+    auto named = [](const std::string& f) { return row_with("MapX", "10", f); };
+    EXPECT_EQ(error_of(h + named("frame_000009.png") + named("frame_000010.png") + named("frame_1000000000000000000000001.png")), "");
+    EXPECT_EQ(error_of(h + named("b.png") + named("a.png")), "");  // no frame numbers: file order is all there is
+    EXPECT_NE(error_of(h + named("x.png") + named("y.png") + named("x.png")).find("m.csv:4: x.png is listed again (first on line 2)"),
+              std::string::npos);
+    EXPECT_NE(error_of(h + named("f_7.png") + named("f_0005.png")).find("m.csv:3: f_0005.png comes after f_7.png"), std::string::npos);
+    EXPECT_NE(error_of(h + named("f_7.png") + named("g_007.jpg")).find("m.csv:3: g_007.jpg comes after f_7.png"), std::string::npos);
+    EXPECT_NE(error_of(h + named("f_99999999999999999999.png") + named("f_99999999999999999998.png")).find("comes after"),
+              std::string::npos);  // beyond 64 bits, still ordered
+}
+
+TEST(AirFormat, ReaderRefusesAFolderWithOnlyAHeader) {
+    const std::string dir = temp_folder("header_only");
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir + "/metadata.csv") << kHeader;
+    AirReader reader(dir);
+    AirRecord r;
+    try {
+        reader.next(r);
+        ADD_FAILURE() << "a header-only metadata.csv read as an empty flight";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("metadata.csv: no frame rows after the header"), std::string::npos) << e.what();
+    }
+    std::filesystem::remove_all(dir);
+}
+
+TEST(AirFormat, FlightInfoRefusesAbsurdCameraFpsAndResolution) {
+    const std::string dir = temp_folder("bad_info");
+    std::filesystem::create_directories(dir);
+    const std::string path = dir + "/flight.json";
+    auto error_for = [&](const std::string& json) {
+        std::ofstream(path) << json;
+        try {
+            read_flight_info(path);
+        } catch (const Error& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    const std::string cam = R"("camera": {"width": 640, "height": 480, "hfov_deg": 60})";
+    EXPECT_EQ(error_for(R"({"metres_per_pixel": 0.5, )" + cam + R"(, "fps": 50, "map_year": 2008})"), "");
+    EXPECT_NE(error_for(R"({"metres_per_pixel": 0, )" + cam + "}").find(path + ": metres_per_pixel 0 must be a number in (0, 1000]"),
+              std::string::npos);
+    EXPECT_NE(error_for(R"({"metres_per_pixel": 1, )" + cam + R"(, "fps": 1e9})").find(path + ": fps 1000000000.0 must be"),
+              std::string::npos);
+    EXPECT_NE(error_for(R"({"metres_per_pixel": 1, "camera": {"width": 640.5, "height": 480, "hfov_deg": 60}})")
+                  .find(path + ": camera.width 640.5 must be a whole number in [2, 16384]"),
+              std::string::npos);
+    EXPECT_NE(error_for(R"({"metres_per_pixel": 1, "camera": {"width": 640, "height": 480, "hfov_deg": 170}})")
+                  .find(path + ": camera.hfov_deg 170 must be a number in (1, 170)"),
+              std::string::npos);
+    EXPECT_NE(error_for(R"({"metres_per_pixel": 1, "origin": {"latitude_deg": 100, "longitude_deg": 0}, )" + cam + "}")
+                  .find(path + ": origin.latitude_deg 100 must be"),
+              std::string::npos);
+    EXPECT_NE(error_for(R"({"metres_per_pixel": 1, )" + cam + R"(, "map_year": 12})").find(path + ": map_year 12 must be 0 (unknown)"),
+              std::string::npos);
+    std::filesystem::remove_all(dir);
+}
+
 // Random byte edits of a valid file: the parser must parse or throw trn::Error, nothing else,
 // and never read out of bounds (run under sanitizers in the fuzz build).
 TEST(AirFormat, FuzzedMetadataParsesOrThrowsTrnError) {
-    const std::string valid = std::string(kHeader) + kRow + "\"q,\"\"x\"\".png\",1,2,3,0,0,0,1,0,0,0,0,0,0,1,5,6,7,8,9\n" + kRow;
+    const std::string valid =
+        std::string(kHeader) + kRow + "\"q,\"\"x\"\".png\",1,2,3,0,0,0,1,0,0,0,0,0,0,1,5,6,7,8,9\n" + "b" + (kRow + 1);
     const std::string alphabet = ",\"\n\r .-e0123456789abcXYZ\t\xEF\xBB\xBF";
     std::uint64_t state = 12345;
     auto rnd = [&](std::uint64_t n) {

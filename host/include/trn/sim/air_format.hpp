@@ -10,7 +10,9 @@
 //   MapX, MapY                    true position in map pixels (x east, y south)
 //   SvoX, SvoY, SvoZ              visual odometry position, metres, same frame as Pose
 // The reader takes columns in any order, ignores extra ones, streams rows (a real flight has
-// 16,000) and reports a malformed row by file and line number. flight.json next to it (written by
+// 16,000) and reports a malformed row by file and line number: besides unparsable fields, values
+// no flight can have (latitude beyond 90, |MapX| > 1e7, a quaternion not of length 1) and rows
+// duplicated or out of frame order (by the number a file name ends with). flight.json next to it (written by
 // `trnkit simulate`) names the map, its resolution and the camera.
 #include <cstdint>
 #include <fstream>
@@ -18,6 +20,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "trn/sim/camera.hpp"
@@ -89,18 +92,23 @@ public:
     int line() const { return line_; }  // line number of the last row read (1 = header)
 
 private:
+    void check_order(const std::string& filename, const std::string& at);
+
     std::istream& in_;
     std::string source_;
     int line_ = 0;
     std::vector<int> column_of_;  // for each AIR column, its index in the file
     std::size_t field_count_ = 0;
+    std::unordered_map<std::string, int> first_line_of_;  // file name -> line it was first listed on
+    std::string last_number_, last_filename_;              // the last row whose name ends in a frame number
 };
 
 // Streams a flight folder.
 class AirReader {
 public:
     explicit AirReader(const std::string& folder);
-    bool next(AirRecord& record) { return parser_->next(record); }
+    // Next row; false at the end. Throws when the file has no rows at all (header only).
+    bool next(AirRecord& record);
     int line() const { return parser_->line(); }
     std::string image_path(const AirRecord& record) const;
     GrayImage load_image(const AirRecord& record) const;
@@ -110,6 +118,7 @@ private:
     std::string folder_;
     std::unique_ptr<std::ifstream> file_;
     std::unique_ptr<AirMetadataParser> parser_;
+    std::size_t rows_ = 0;
 };
 
 }  // namespace trn::sim
