@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "options.hpp"
 #include "progress.hpp"
 #include "trn/error.hpp"
 #include "trn/filter/backend_choice.hpp"
@@ -33,6 +34,8 @@ void progress_bar(std::size_t done, std::size_t total) { draw_progress(done, tot
 void localize(const LocalizeArgs& a) {
     namespace fs = std::filesystem;
     if (!fs::is_directory(a.dataset)) throw Error("--dataset " + a.dataset + ": not a folder");
+    if (a.min_particles > a.max_particles)
+        throw Error("--min-particles " + std::to_string(a.min_particles) + " exceeds --max-particles " + std::to_string(a.max_particles));
     const std::string info_path = a.dataset + "/flight.json";
     if (!fs::exists(info_path)) throw Error(info_path + ": missing (it names the camera and map resolution)");
     const sim::FlightInfo info = sim::read_flight_info(info_path);
@@ -65,10 +68,18 @@ void localize(const LocalizeArgs& a) {
     if (!(a.rate_hz > 0)) throw Error("--rate must be > 0");
     const std::size_t stride = std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(info.fps / a.rate_hz)));
     const std::size_t rows = filter::count_air_rows(a.dataset);
-    filter::AirFlightSource source(a.dataset, info.camera, mpp, info.fps, stride, (rows + stride - 1) / stride);
+    filter::AirFlightSource source(a.dataset, info.camera, mpp, info.fps, stride, (rows + stride - 1) / stride,
+                                   {map.image.width, map.image.height});
+    for (const std::string& w : source.warnings()) std::cerr << "trnkit: warning: " << w << "\n";
     std::cerr << "localizing " << a.dataset << " (" << rows << " frames, every " << stride << ") on " << backend->info().name << ", "
               << cfg.conversion.to_string() << ", " << filter::to_string(cfg.sampling) << " sampling, seed " << a.seed << "\n";
-    const filter::LocalizationResult result = filter::run_localization(source, pf, progress_bar);
+    filter::LocalizationResult result;
+    try {
+        result = filter::run_localization(source, pf, progress_bar);
+    } catch (const Error& e) {
+        if (std::string(e.what()).rfind(a.dataset, 0) == 0) throw;  // the flight source's own errors name their place
+        throw Error(source.position() + ": " + e.what());           // which row of the flight the library choked on
+    }
 
     const std::string out = a.out.empty() ? a.dataset + "/localize" : a.out;
     fs::create_directories(out);
@@ -94,17 +105,23 @@ void add_localize_command(CLI::App& app) {
     auto* cmd = app.add_subcommand("localize", "Localize an AIR flight folder on its map with the DPC-PFL particle filter");
     cmd->add_option("--dataset", a->dataset, "AIR flight folder (metadata.csv, frames, flight.json)")->required();
     cmd->add_option("--map", a->map, "Localization map image (default: the one flight.json names)");
-    cmd->add_option("--mpp", a->mpp, "Map resolution, metres per pixel (default: flight.json)");
+    cmd->add_option("--mpp", a->mpp, "Map resolution, metres per pixel (default: flight.json)")->check(real_in(0, 1000, Open::low));
     cmd->add_option("--backend", a->backend, "Scoring backend (cpu, opencl:0, vulkan, ... or 'fastest')")->capture_default_str();
     cmd->add_option("--conversion", a->conversion, "linear, softmax, rectifying:D or logistic:V")->capture_default_str();
     cmd->add_option("--sampling", a->sampling, "kld, importance or rejection")->capture_default_str();
-    cmd->add_option("--seed", a->seed, "Random seed (a fixed seed reproduces a run exactly)")->capture_default_str();
-    cmd->add_option("--particles", a->particles, "Particle count for importance / rejection sampling")->capture_default_str();
-    cmd->add_option("--min-particles", a->min_particles, "KLD sampling: fewest particles")->capture_default_str();
-    cmd->add_option("--max-particles", a->max_particles, "KLD sampling: most particles (and the initial set)")->capture_default_str();
-    cmd->add_option("--rate", a->rate_hz, "Filter rate in Hz (every fps/rate-th frame is used)")->capture_default_str();
-    cmd->add_option("--template-width", a->template_width, "Camera frames are downscaled to this width before scoring")->capture_default_str();
-    cmd->add_option("--sparse", a->sparse, "Share of template pixels scored (1 = dense)")->capture_default_str()->check(CLI::Range(1e-4, 1.0));
+    cmd->add_option("--seed", a->seed, "Random seed (a fixed seed reproduces a run exactly)")->capture_default_str()->transform(any_seed());
+    cmd->add_option("--particles", a->particles, "Particle count for importance / rejection sampling")
+        ->capture_default_str()
+        ->transform(whole_in(1, kMaxParticles));
+    cmd->add_option("--min-particles", a->min_particles, "KLD sampling: fewest particles")->capture_default_str()->transform(whole_in(1, kMaxParticles));
+    cmd->add_option("--max-particles", a->max_particles, "KLD sampling: most particles (and the initial set)")
+        ->capture_default_str()
+        ->transform(whole_in(1, kMaxParticles));
+    cmd->add_option("--rate", a->rate_hz, "Filter rate in Hz (every fps/rate-th frame is used)")->capture_default_str()->check(real_in(0, 1000, Open::low));
+    cmd->add_option("--template-width", a->template_width, "Camera frames are downscaled to this width before scoring")
+        ->capture_default_str()
+        ->transform(whole_in(8, kMaxTemplateWidth));
+    cmd->add_option("--sparse", a->sparse, "Share of template pixels scored (1 = dense)")->capture_default_str()->check(real_in(1e-4, 1.0));
     cmd->add_option("--out", a->out, "Output folder (default: DATASET/localize)");
     cmd->add_flag("--no-plots", a->no_plots, "Skip the gnuplot step");
     cmd->callback([a] { localize(*a); });

@@ -1,6 +1,8 @@
 #include "trn/filter/flight_source.hpp"
 
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
 #include <fstream>
 
 #include "trn/error.hpp"
@@ -8,20 +10,83 @@
 
 namespace trn::filter {
 
+namespace {
+
+constexpr double kMaxAltitudeM = 20000;  // above any UAV; beyond it RelativeAltitude is a broken file
+
+std::string place(const sim::AirReader& r, const std::string& filename) {
+    return r.folder() + "/metadata.csv:" + std::to_string(r.line()) + " (" + filename + ")";
+}
+
+std::string number(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.6g", v);
+    return buf;
+}
+
+}  // namespace
+
 AirFlightSource::AirFlightSource(const std::string& folder, const sim::Camera& camera, double metres_per_pixel,
-                                 double fps, std::size_t stride, std::size_t frames_hint)
+                                 double fps, std::size_t stride, std::size_t frames_hint, MapExtent map)
     : reader_(folder), camera_(camera), mpp_(metres_per_pixel), fps_(fps), stride_(stride), hint_(frames_hint) {
     if (!(fps > 0)) throw Error("AirFlightSource: fps must be > 0");
     if (stride == 0) throw Error("AirFlightSource: stride must be >= 1");
     if (!(metres_per_pixel > 0)) throw Error("AirFlightSource: metres_per_pixel must be > 0");
     camera.validate();
+    check_rows(map);
 }
+
+// One pass over the rows before the run (16,000 rows take milliseconds; decoding images would not,
+// so frames are only looked for).
+void AirFlightSource::check_rows(MapExtent map) {
+    sim::AirReader rows(reader_.folder());
+    sim::AirRecord r;
+    std::size_t count = 0, used = 0, missing = 0, odometry_off = 0;
+    std::string first_missing, first_odometry_off;
+    double start_x = 0, start_y = 0, svo_e0 = 0, svo_n0 = 0;
+    while (rows.next(r)) {
+        const std::string at = place(rows, r.filename) + ": ";
+        if (!(r.relative_altitude_m > 0 && r.relative_altitude_m <= kMaxAltitudeM))
+            throw Error(at + "RelativeAltitude " + number(r.relative_altitude_m) + " m is not a flight altitude (expected (0, " +
+                        number(kMaxAltitudeM) + "] m)");
+        const bool off_map = map.width > 0 && map.height > 0 &&
+                             !(r.map_x >= 0 && r.map_x < map.width && r.map_y >= 0 && r.map_y < map.height);
+        if (off_map)
+            throw Error(at + "the true position MapX,MapY " + number(r.map_x) + "," + number(r.map_y) + " is outside the " +
+                        std::to_string(map.width) + "x" + std::to_string(map.height) + " px map; the map does not cover the flight");
+        if (count == 0) start_x = r.map_x, start_y = r.map_y, svo_e0 = r.svo_m.x, svo_n0 = r.svo_m.y;
+        // Odometry placed on the map from the start (as the localizer does): drifting off it is
+        // worth knowing, but the filter copes (particles off the map are flagged, not used).
+        const double ox = start_x + (r.svo_m.x - svo_e0) / mpp_, oy = start_y - (r.svo_m.y - svo_n0) / mpp_;
+        if (map.width > 0 && map.height > 0 && !(ox >= 0 && ox < map.width && oy >= 0 && oy < map.height))
+            if (odometry_off++ == 0) first_odometry_off = place(rows, r.filename);
+        if (count++ % stride_ == 0) {
+            ++used;
+            std::error_code ec;
+            if (!std::filesystem::is_regular_file(rows.image_path(r), ec))
+                if (missing++ == 0) first_missing = place(rows, r.filename);
+        }
+    }
+    if (missing == used)
+        throw Error(reader_.folder() + ": none of the " + std::to_string(used) + " frames the filter would use exists (first: " +
+                    first_missing + ")");
+    if (missing)
+        warnings_.push_back(reader_.folder() + ": " + std::to_string(missing) + " of " + std::to_string(used) +
+                            " frames are missing and will be skipped (first: " + first_missing + ")");
+    if (odometry_off)
+        warnings_.push_back(reader_.folder() + ": the odometry leaves the map on " + std::to_string(odometry_off) + " of " +
+                            std::to_string(count) + " rows (first: " + first_odometry_off + ")");
+    if (hint_ == 0) hint_ = used;
+}
+
+std::string AirFlightSource::position() const { return place(reader_, last_filename_); }
 
 bool AirFlightSource::next(FlightSample& s) {
     sim::AirRecord r;
     while (reader_.next(r)) {
         const std::size_t row = row_++;
         if (row % stride_) continue;
+        last_filename_ = r.filename;
         s.frame_index = row;
         s.time_s = row / fps_;
         s.has_truth = std::isfinite(r.map_x) && std::isfinite(r.map_y);
@@ -32,13 +97,26 @@ bool AirFlightSource::next(FlightSample& s) {
         s.map_px_per_camera_px = sim::template_scale(camera_, r.relative_altitude_m, mpp_);
         s.image = {};
         s.image_error.clear();
+        ++attempted_;
         try {
             s.image = reader_.load_image(r);
         } catch (const Error& e) {
             s.image_error = e.what();  // counted by the filter as a missing frame
+            if (first_load_error_.empty()) first_load_error_ = e.what();
+        }
+        if (!s.image.pixels.empty()) {
+            // No per-frame scale handling exists: the scale above assumes the camera's pixels.
+            if (s.image.width != camera_.width || s.image.height != camera_.height)
+                throw Error(position() + ": the frame is " + std::to_string(s.image.width) + "x" + std::to_string(s.image.height) +
+                            " but flight.json's camera is " + std::to_string(camera_.width) + "x" + std::to_string(camera_.height) +
+                            "; it would be scored at the wrong scale");
+            ++loaded_;
         }
         return true;
     }
+    if (attempted_ > 0 && loaded_ == 0)
+        throw Error(reader_.folder() + ": none of the " + std::to_string(attempted_) + " frames could be read (first: " +
+                    first_load_error_ + ")");
     return false;
 }
 

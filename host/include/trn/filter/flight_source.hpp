@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "trn/io/image_io.hpp"
 #include "trn/sim/air_format.hpp"
@@ -31,19 +32,36 @@ public:
     virtual std::size_t frames_hint() const = 0;  // expected samples (0: unknown)
 };
 
+// The localization map's size in pixels; 0 x 0 when unknown (coverage is then not checked).
+struct MapExtent {
+    int width = 0, height = 0;
+};
+
 // An AIR folder (flight.json gives the camera; the map resolution is the localization map's).
+// The constructor reads every row first, so a folder the filter cannot use fails at once with
+// file:line: no rows, an altitude that is no flight's, ground truth off the map, every frame
+// missing. What a run survives (a few frames missing, odometry drifting off the map) becomes
+// warnings(). While streaming, a frame whose size differs from the camera is an error: it
+// would be scored at the wrong scale.
 class AirFlightSource : public FlightSource {
 public:
     AirFlightSource(const std::string& folder, const sim::Camera& camera, double metres_per_pixel, double fps,
-                    std::size_t stride, std::size_t frames_hint = 0);
+                    std::size_t stride, std::size_t frames_hint = 0, MapExtent map = {});
     bool next(FlightSample& sample) override;
     std::size_t frames_hint() const override { return hint_; }
+    const std::vector<std::string>& warnings() const { return warnings_; }
+    // "folder/metadata.csv:LINE (FILENAME)" of the sample last returned, to give errors a place.
+    std::string position() const;
 
 private:
+    void check_rows(MapExtent map);
+
     sim::AirReader reader_;
     sim::Camera camera_;
     double mpp_, fps_;
-    std::size_t stride_, row_ = 0, hint_;
+    std::size_t stride_, row_ = 0, hint_, loaded_ = 0, attempted_ = 0;
+    std::string last_filename_, first_load_error_;
+    std::vector<std::string> warnings_;
 };
 
 // A flight simulated over `world` (kept alive by the caller): renders only the frames it returns.
