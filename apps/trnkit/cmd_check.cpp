@@ -10,6 +10,7 @@
 #include <random>
 
 #include "commands.hpp"
+#include "options.hpp"
 #include "trn/io/image_io.hpp"
 #include "trn/registry.hpp"
 
@@ -28,6 +29,16 @@ GrayImage builtin_map(int w, int h) {
     return img;
 }
 
+// "flat template, flat patch" for a ParticleScore's flags.
+std::string flag_names(std::uint32_t flags) {
+    std::string out;
+    const std::pair<std::uint32_t, const char*> names[] = {
+        {kTooFewSamples, "too few samples inside the map"}, {kFlatPatch, "flat map patch"}, {kFlatTemplate, "flat template"}};
+    for (const auto& [bit, name] : names)
+        if (flags & bit) out += (out.empty() ? "" : ", ") + std::string(name);
+    return out;
+}
+
 }  // namespace
 
 void add_check_command(CLI::App& app) {
@@ -37,7 +48,7 @@ void add_check_command(CLI::App& app) {
     };
     auto a = std::make_shared<Args>();
     auto* cmd = app.add_subcommand("check", "Quick cross-backend scoring and Sobel run on built-in data, printed as a table");
-    cmd->add_option("-n,--particles", a->particles, "Particles to score")->capture_default_str()->check(CLI::Range(1, 1000000));
+    cmd->add_option("-n,--particles", a->particles, "Particles to score")->capture_default_str()->transform(whole_in(1, kMaxParticles));
     cmd->add_option("--map", a->map, "Use this map image instead of the built-in one");
     cmd->callback([a] {
         const GrayImage map = a->map.empty() ? builtin_map(1600, 1200) : load_gray(a->map);
@@ -88,6 +99,16 @@ void add_check_command(CLI::App& app) {
                 std::printf("%-10s %-34.34s %12.2f %14.0f %10s %12.2e %14.2f\n", dev.name.c_str(), dev.device.c_str(), ms,
                             poses.size() / (ms / 1000), best == 0 ? "true pose" : "WRONG", worst, sms);
                 if (best != 0 || worst > 1e-4) throw Error("check: " + dev.name + " disagrees with cpu-ref");
+                // A flagged true pose (flat or tiny map) scores 0 like every other flagged particle, so
+                // "best" would point at it by accident: nothing was checked, which is a failure.
+                const auto flagged = std::count_if(scores.begin(), scores.end(), [](const ParticleScore& s) { return !s.valid(); });
+                if (!scores[0].valid())
+                    throw Error("check: " + dev.name + ": the true pose is flagged (" + flag_names(scores[0].flags) + "), " +
+                                std::to_string(flagged) + " of " + std::to_string(scores.size()) +
+                                " particles flagged; the map has no texture to match, so nothing was checked");
+                if (flagged > 0)
+                    std::fprintf(stderr, "check: warning: %s: %ld of %zu particles flagged (off the map or flat); only their flags were compared\n",
+                                 dev.name.c_str(), static_cast<long>(flagged), scores.size());
             }
         }
         std::printf("\nEvery available backend found the true pose and agreed with cpu-ref within 1e-4.\n"
