@@ -49,11 +49,10 @@ protected:
         std::ofstream csv(d + "/metadata.csv");
         csv << "Filename,Latitude,Longitude,RelativeAltitude,ImuX,ImuY,ImuZ,ImuW,PoseX,PoseY,PoseZ,OrientationX,OrientationY,"
                "OrientationZ,OrientationW,MapX,MapY,SvoX,SvoY,SvoZ\n";
-        const cv::Mat map = cv::imread(d + "/map.png", cv::IMREAD_GRAYSCALE);
         for (const std::string& r : rows) {
             csv << r << "\n";
             const std::string file = r.substr(0, r.find(','));
-            if (file.rfind("gone", 0) != 0) cv::imwrite(d + "/" + file, map(cv::Rect(90, 70, frame_w, frame_h)));
+            if (file.rfind("gone", 0) != 0) cv::imwrite(d + "/" + file, trn::test::textured_image(frame_w, frame_h, 3).mat());
         }
         return d;
     }
@@ -111,6 +110,7 @@ TEST_F(CliInput, RealsRefuseNanInfAndOutOfRangeNamingTheOption) {
         {"energy sample --period-ms 0 --source nosuch", "--period-ms: '0' is outside (0, 60000]"},
         {"energy integrate " + path("none.log") + " --markers " + path("none.csv") + " --offset nan", "--offset: 'nan'"},
         {"score --map m --template t --poses p --min-valid 2", "--min-valid: '2' is outside [0, 1]"},
+        {"energy integrate-span " + path("none.log") + " --start 5 --end 1", "--end 1.000000 must be after --start 5.000000"},
         {"score --map m --template t --poses p --sampling random:nan", "--sampling 'random:nan'"},
         {"score --map m --template t --poses p --sampling random:0.5:-1", "--sampling 'random:0.5:-1'"},
     });
@@ -154,6 +154,13 @@ TEST_F(CliInput, LocalizeRefusesBrokenAirFoldersNamingFileAndLine) {
         {localize(flight("no_fps", {ok}, 64, 48, no_fps)), "no_fps/flight.json: fps 0 must be a number in (0, 1000]"},
         {localize(flight("wide_fov", {ok}, 64, 48, wide_fov)), "wide_fov/flight.json: camera.hfov_deg 600 must be a number"},
     });
+}
+
+TEST_F(CliInput, LocalizeNamesTheRowWhenTheLibraryRefuses) {
+    const std::string vga = R"({"metres_per_pixel": 1, "map_file": "map.png", "camera": {"width": 640, "height": 480, "hfov_deg": 60}, "fps": 5})";
+    const std::string d = flight("vga", {row("frame_000000.png")}, 640, 480, vga);
+    expect_refused({{"localize --backend cpu --no-plots --template-width 300 --dataset " + d,
+                     d + "/metadata.csv:2 (frame_000000.png): score: map 240x200 is smaller than the template 300x225"}});
 }
 
 TEST_F(CliInput, LocalizeWarnsAboutAFewMissingFramesAndRuns) {
