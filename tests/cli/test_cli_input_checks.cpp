@@ -163,12 +163,17 @@ TEST_F(CliInput, LocalizeNamesTheRowWhenTheLibraryRefuses) {
                      d + "/metadata.csv:2 (frame_000000.png): score: map 240x200 is smaller than the template 300x225"}});
 }
 
-TEST_F(CliInput, LocalizeWarnsAboutAFewMissingFramesAndRuns) {
-    const std::string d = flight("some_missing", {row("frame_000000.png"), row("gone_000001.png"), row("frame_000002.png")});
+TEST_F(CliInput, LocalizeWarnsAboutAFewMissingFramesAndOdometryOffTheMapAndRuns) {
+    const std::string d =
+        flight("some_missing", {row("frame_000000.png"), row("gone_000001.png"), row("frame_000002.png", "200", "120", "500")});
     const auto r = run_trnkit(localize(d));
     EXPECT_EQ(r.code, 0) << r.output;
     EXPECT_NE(r.output.find("warning: " + d + ": 1 of 3 frames are missing and will be skipped (first: " + d +
                             "/metadata.csv:3 (gone_000001.png))"),
+              std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("warning: " + d + ": the odometry leaves the map on 1 of 3 rows (first: " + d +
+                            "/metadata.csv:4 (frame_000002.png))"),
               std::string::npos)
         << r.output;
 }
