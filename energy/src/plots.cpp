@@ -14,16 +14,14 @@
 
 #include "trn/energy/stats.hpp"
 #include "trn/error.hpp"
+#include "trn/io/atomic_file.hpp"
 
 extern char** environ;
 
 namespace trn::energy {
 namespace {
 
-void write(const std::string& path, const std::string& text) {
-    std::ofstream f(path, std::ios::binary);
-    if (!f || !(f << text)) throw Error(path + ": cannot write");
-}
+void write(const std::string& path, const std::string& text) { io::write_file_atomic(path, text); }
 
 // gnuplot strings are single-quoted; a quote inside is doubled.
 std::string quoted_path(const std::string& s) {
