@@ -93,7 +93,7 @@ void open_output_folder(const std::string& folder, const std::string& command, b
         fs::create_directories(folder, ec);
         if (ec) throw Error(option + " " + folder + ": cannot create folder (" + ec.message() + ")");
     }
-    if (state != FolderState::Foreign) write_file_atomic(folder + "/" + kOutputMarker, marker_line(command) + "\n");
+    write_file_atomic(folder + "/" + kOutputMarker, marker_line(command) + "\n");
 }
 
 StagedFolder::StagedFolder(const std::string& target, std::string command, bool force, const std::string& option)

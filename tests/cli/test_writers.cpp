@@ -185,6 +185,9 @@ TEST_F(Writers, SimulateRefusesAForeignFolderUnlessForced) {
     EXPECT_EQ(slurp(path("mine/notes.txt")), "my notes\n");
     EXPECT_EQ(count_frames(path("mine")), 3u);
     EXPECT_EQ(trnkit("simulate --read " + path("mine")).code, 0);
+    // Still not simulate's own folder: never replaced whole, so the next run asks again.
+    EXPECT_NE(trnkit(kSimulate + " --frames 3 --out " + path("mine")).code, 0);
+    EXPECT_EQ(slurp(path("mine/notes.txt")), "my notes\n");
 }
 
 TEST_F(Writers, ScoreToAFullDeviceFailsNamingIt) {
@@ -284,6 +287,8 @@ TEST_F(Writers, OutputChecksNameTheOptionAndThePath) {
     EXPECT_EQ(trn::io::check_output_folder(path("d"), "demo", false), FolderState::OwnOutput);
     EXPECT_NE(message([&] { trn::io::check_output_folder(path("d"), "localize", false); }).find("it is one of trnkit demo"), std::string::npos);
     EXPECT_EQ(trn::io::check_output_folder(path("d"), "localize", true), FolderState::Foreign);
+    trn::io::open_output_folder(path("d"), "localize", true);  // --force adopts the folder
+    EXPECT_EQ(trn::io::check_output_folder(path("d"), "localize", false), FolderState::OwnOutput);
 }
 
 }  // namespace

@@ -20,8 +20,8 @@ FolderState check_output_folder(const std::string& folder, const std::string& co
                                 const std::string& option = "--out");
 
 // check_output_folder, then creates the folder (with parents) and marks it as `command`'s output
-// (a Foreign folder, allowed by `force`, is written into but never marked, so a later run asks for
-// --force again). Call after every other check, right before the first write.
+// (a Foreign folder allowed by `force` is adopted: its other files stay, later runs need no
+// --force). Call after every other check, right before the first write.
 void open_output_folder(const std::string& folder, const std::string& command, bool force,
                         const std::string& option = "--out");
 
@@ -40,8 +40,9 @@ public:
     const std::string& path() const { return staging_; }    // write the output here
     const std::string& target() const { return target_; }
     // Marks the staging folder and replaces the target by it (an atomic exchange where the file
-    // system supports it); a Foreign target (allowed by force) keeps its other files and receives
-    // the new ones. Throws trn::Error naming the target on failure.
+    // system supports it); a Foreign target (allowed by force) keeps its other files, receives the
+    // new ones and stays unmarked, so it is never replaced whole. Throws trn::Error naming the
+    // target on failure.
     void commit();
 
 private:
