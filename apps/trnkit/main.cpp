@@ -41,13 +41,12 @@ int run(int argc, char** argv) {
 // Output on stdout is results too (score's CSV, integrate's JSON): flush it and check, so
 // `trnkit ... > /dev/full` or a cut pipe to a full disk exits non-zero instead of 0 with lost data.
 int check_stdout(int code) {
-    std::cout.flush();
     errno = 0;
-    const bool flush_failed = std::fflush(stdout) != 0;
-    const int why = errno;
-    if (!flush_failed && std::cout && !std::ferror(stdout)) return code;
-    std::cerr << "trnkit: error: standard output: write failed" << (flush_failed && why ? std::string(" (") + std::strerror(why) + ")" : "")
-              << "\n";
+    std::cout.flush();  // (synced with stdio: this already flushes stdout)
+    int why = errno;
+    if (std::fflush(stdout) != 0) why = errno;
+    if (std::cout && !std::ferror(stdout)) return code;
+    std::cerr << "trnkit: error: standard output: write failed" << (why ? std::string(" (") + std::strerror(why) + ")" : "") << "\n";
     return code ? code : 1;
 }
 
