@@ -16,6 +16,7 @@
 #include "trn/filter/flight_source.hpp"
 #include "trn/filter/localization.hpp"
 #include "trn/filter/report.hpp"
+#include "trn/io/output_folder.hpp"
 #include "trn/registry.hpp"
 #include "trn/sim/procedural_map.hpp"
 
@@ -28,7 +29,7 @@ struct DemoArgs {
     int template_width = 160;
     int map_year = 2008, flight_year = 2010;
     std::uint64_t seed = 1;
-    bool no_plots = false;
+    bool no_plots = false, force = false;
 };
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
@@ -42,6 +43,8 @@ void demo(const DemoArgs& a) {
     const auto t0 = std::chrono::steady_clock::now();
     const sim::Scenario& preset = sim::find_scenario(a.scenario);
     if (!(a.distance_km > 0)) throw Error("--distance-km must be > 0");
+    const std::string out = a.out.empty() ? (fs::temp_directory_path() / "trnkit-demo").string() : a.out;
+    io::check_output_folder(out, "demo", a.force);  // before the maps and the flight, not after
 
     // The localization map (a.map_year) and the world the camera sees (a.flight_year), same place.
     sim::ProceduralMapOptions mo;
@@ -88,8 +91,7 @@ void demo(const DemoArgs& a) {
     filter::ParticleFilter pf(scorer, cfg);
     const filter::LocalizationResult result = filter::run_localization(source, pf, progress_bar);
 
-    const std::string out = a.out.empty() ? (fs::temp_directory_path() / "trnkit-demo").string() : a.out;
-    fs::create_directories(out);
+    io::open_output_folder(out, "demo", a.force);
     filter::write_rows_csv(out + "/localization.csv", result.rows);
     filter::write_summary_json(out + "/summary.json", result.summary,
                                {{"backend", backend->info().name}, {"conversion", cfg.conversion.to_string()},
@@ -128,6 +130,7 @@ void add_demo_command(CLI::App& app) {
     cmd->add_option("--seed", a->seed, "Seed of map, flight and filter")->capture_default_str()->transform(any_seed());
     cmd->add_option("--out", a->out, "Output folder (default: <temp>/trnkit-demo)");
     cmd->add_flag("--no-plots", a->no_plots, "Skip the gnuplot step");
+    cmd->add_flag("--force", a->force, "Write into a non-empty folder that is not an earlier output of demo");
     cmd->callback([a] { demo(*a); });
 }
 

@@ -2,7 +2,6 @@
 // a summary JSON with provenance, and gnuplot figures (histograms with the mean, box plots).
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 
 #include "commands.hpp"
@@ -10,6 +9,7 @@
 #include "trn/energy/compare.hpp"
 #include "trn/energy/plots.hpp"
 #include "trn/error.hpp"
+#include "trn/io/output_folder.hpp"
 
 namespace trn::cli {
 
@@ -17,7 +17,7 @@ void add_energy_compare_command(CLI::App* energy) {
     struct Args {
         std::vector<std::string> runs;
         std::string out = "energy-compare", energy = "net";
-        bool student = false, no_plots = false;
+        bool student = false, no_plots = false, force = false;
     };
     auto a = std::make_shared<Args>();
     auto* c = energy->add_subcommand("compare", "Compare platforms from run reports of `energy integrate`: tables, summary JSON, plots");
@@ -26,13 +26,13 @@ void add_energy_compare_command(CLI::App* energy) {
     c->add_option("--energy", a->energy, "net (above idle) or gross energy")->capture_default_str()->check(CLI::IsMember({"net", "gross"}));
     c->add_flag("--student", a->student, "Student's t-test (equal variances) instead of Welch's");
     c->add_flag("--no-plots", a->no_plots, "Skip the gnuplot figures");
+    c->add_flag("--force", a->force, "Write into a non-empty folder that is not an earlier output of energy compare");
     c->callback([a] {
         energy::CompareOptions o;
         o.student = a->student, o.net = a->energy == "net";
+        io::check_output_folder(a->out, "energy compare", a->force);
         const auto cmp = energy::compare_files(a->runs, o);
-        std::error_code ec;
-        std::filesystem::create_directories(a->out, ec);
-        if (ec) throw Error(a->out + ": cannot create folder (" + ec.message() + ")");
+        io::open_output_folder(a->out, "energy compare", a->force);
         const std::string md = energy::tables_markdown(cmp);
         write_text_file(a->out + "/tables.md", md);
         write_text_file(a->out + "/table1_energy.csv", energy::energy_table_csv(cmp));

@@ -2,7 +2,6 @@
 // count, error bound, flags) as JSON and CSV, with the markers put on the log's clock by the
 // same clock, an explicit offset, or automatic alignment.
 #include <cstdio>
-#include <fstream>
 #include <iostream>
 
 #include "commands.hpp"
@@ -11,6 +10,7 @@
 #include "trn/energy/plots.hpp"
 #include "trn/energy/run_report.hpp"
 #include "trn/error.hpp"
+#include "trn/io/atomic_file.hpp"
 
 namespace trn::cli {
 
@@ -48,9 +48,12 @@ void add_energy_integrate_command(CLI::App* energy) {
         q.integration.rule = a->hold ? energy::Rule::Hold : energy::Rule::Trapezoid;
         q.integration.min_samples = a->min_samples;
         const auto opts = energy::parse_option_list(a->opts);
+        if (!a->json.empty()) io::check_output_file(a->json, "--json");
+        if (!a->csv.empty()) io::check_output_file(a->csv, "--csv");
+        if (!a->plot.empty()) io::check_output_file(a->plot, "--plot");
         const energy::RunReport r = energy::integrate_files(a->log, a->format, opts, a->markers, q);
         const std::string json = energy::run_report_json(r);
-        if (a->json.empty()) std::cout << json;
+        if (a->json.empty()) std::cout << json;  // checked at exit (main.cpp)
         else write_text_file(a->json, json);
         if (!a->csv.empty()) write_text_file(a->csv, energy::run_report_csv(r));
         // Summary on stderr so stdout stays pure JSON.

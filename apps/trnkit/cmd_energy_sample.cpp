@@ -2,7 +2,6 @@
 // live power from Linux hwmon or RAPL powercap, written in trnkit's power-log format on
 // CLOCK_REALTIME so markers from `trnkit frames` line up with the same clock.
 #include <cstdio>
-#include <fstream>
 
 #include "commands.hpp"
 #include "options.hpp"
@@ -10,6 +9,7 @@
 #include "trn/energy/parsers.hpp"
 #include "trn/energy/sysfs_sampler.hpp"
 #include "trn/error.hpp"
+#include "trn/io/atomic_file.hpp"
 
 namespace trn::cli {
 
@@ -36,10 +36,11 @@ void add_energy_sample_command(CLI::App* energy) {
         }
         if (a->source.empty()) throw Error("energy sample: give --source (or --list to see the sources)");
         const auto src = energy::find_sysfs_source(a->source, a->root);
+        if (!a->out.empty()) io::check_output_file(a->out, "--out");  // before sampling for --duration-s
         const auto trace = energy::sample_sysfs(src, a->period_ms / 1000, a->duration_s);
         const std::string text = energy::format_trnkit_power(trace);
         if (a->out.empty()) {
-            std::fputs(text.c_str(), stdout);
+            std::fputs(text.c_str(), stdout);  // checked at exit (main.cpp)
             return;
         }
         write_text_file(a->out, text);

@@ -35,6 +35,7 @@ void add_experiment_command(CLI::App& app) {
     cmd->add_flag("--no-merge", a->no_merge, "Run jobs only; merge later");
     cmd->add_flag("--partial", a->partial, "Merge the finished jobs even when some are missing (a documented subset)");
     cmd->add_flag("--no-plots", a->no_plots, "Skip gnuplot");
+    cmd->add_flag("--force", a->force, "Write into a non-empty folder that is not an earlier output of this study");
     cmd->callback([a] {
         a->progress = true;
         const std::size_t missing = experiments::run_experiment(*a);

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <algorithm>
 #include <cstdio>
-#include <fstream>
 #include <iostream>
 #include <random>
 #include <vector>
@@ -13,6 +12,7 @@
 #include "options.hpp"
 #include "trn/energy/frame_runner.hpp"
 #include "trn/error.hpp"
+#include "trn/io/atomic_file.hpp"
 #include "trn/registry.hpp"
 #include "trn/scoring_plan.hpp"
 
@@ -65,6 +65,7 @@ void add_frames_command(CLI::App& app) {
     cmd->add_option("-o,--out", a->out, "Marker file to write")->capture_default_str();
     cmd->callback([a] {
         if (a->particles <= 0) throw Error("--particles must be positive");
+        io::check_output_file(a->out, "--out");  // before the run, which takes minutes
         auto backend = default_registry().create(a->backend);
         energy::FrameRunConfig cfg;
         cfg.frames = a->frames, cfg.idle_s = a->idle_ms / 1000, cfg.lead_idle_s = a->lead_idle_ms / 1000, cfg.sync_unit_s = a->sync_unit_ms / 1000;
@@ -104,10 +105,7 @@ void add_frames_command(CLI::App& app) {
                 return t;
             }, cfg);
         }
-        std::ofstream f(a->out, std::ios::binary);
-        if (!f) throw Error(a->out + ": cannot write the marker file");
-        f << energy::format_markers(markers);
-        if (!f) throw Error(a->out + ": write failed");
+        io::write_file_atomic(a->out, energy::format_markers(markers));
         std::size_t frames = 0;
         double exec = 0;
         for (const auto& r : markers.rows)

@@ -13,6 +13,7 @@
 #include "trn/filter/flight_source.hpp"
 #include "trn/filter/localization.hpp"
 #include "trn/filter/report.hpp"
+#include "trn/io/output_folder.hpp"
 #include "trn/registry.hpp"
 #include "trn/sim/air_format.hpp"
 #include "trn/sim/map.hpp"
@@ -26,7 +27,7 @@ struct LocalizeArgs {
     double mpp = 0, rate_hz = 5, sparse = 1;
     std::size_t particles = 1000, min_particles = 100, max_particles = 2000;
     int template_width = 160;
-    bool no_plots = false;
+    bool no_plots = false, force = false;
 };
 
 void progress_bar(std::size_t done, std::size_t total) { draw_progress(done, total, "steps"); }
@@ -38,6 +39,8 @@ void localize(const LocalizeArgs& a) {
         throw Error("--min-particles " + std::to_string(a.min_particles) + " exceeds --max-particles " + std::to_string(a.max_particles));
     const std::string info_path = a.dataset + "/flight.json";
     if (!fs::exists(info_path)) throw Error(info_path + ": missing (it names the camera and map resolution)");
+    const std::string out = a.out.empty() ? a.dataset + "/localize" : a.out;
+    io::check_output_folder(out, "localize", a.force);  // before the run, not after it
     const sim::FlightInfo info = sim::read_flight_info(info_path);
     const std::string map_path = !a.map.empty() ? a.map : info.map_file.empty() ? "" : a.dataset + "/" + info.map_file;
     if (map_path.empty()) throw Error("--map: flight.json names no map; give --map FILE");
@@ -81,8 +84,7 @@ void localize(const LocalizeArgs& a) {
         throw Error(source.position() + ": " + e.what());           // which row of the flight the library choked on
     }
 
-    const std::string out = a.out.empty() ? a.dataset + "/localize" : a.out;
-    fs::create_directories(out);
+    io::open_output_folder(out, "localize", a.force);
     filter::write_rows_csv(out + "/localization.csv", result.rows);
     filter::write_summary_json(out + "/summary.json", result.summary,
                                {{"backend", backend->info().name}, {"conversion", cfg.conversion.to_string()},
@@ -124,6 +126,7 @@ void add_localize_command(CLI::App& app) {
     cmd->add_option("--sparse", a->sparse, "Share of template pixels scored (1 = dense)")->capture_default_str()->check(real_in(1e-4, 1.0));
     cmd->add_option("--out", a->out, "Output folder (default: DATASET/localize)");
     cmd->add_flag("--no-plots", a->no_plots, "Skip the gnuplot step");
+    cmd->add_flag("--force", a->force, "Write into a non-empty folder that is not an earlier output of localize");
     cmd->callback([a] { localize(*a); });
 }
 

@@ -1,12 +1,12 @@
 // `trnkit score`: NCC/CC/SSD of every pose in a CSV against one camera template, as CSV.
 #include <cstdio>
-#include <fstream>
 #include <iostream>
 #include <optional>
 #include <string_view>
 
 #include "commands.hpp"
 #include "options.hpp"
+#include "trn/io/atomic_file.hpp"
 #include "trn/io/image_io.hpp"
 #include "trn/io/pose_csv.hpp"
 #include "trn/parse_number.hpp"
@@ -55,6 +55,7 @@ void add_score_command(CLI::App& app) {
         const GrayImage templ = load_gray(a->templ);
         const std::vector<Pose> poses = read_poses_csv(a->poses);
         if (poses.empty()) throw Error(a->poses + ": no poses to score");
+        if (!a->out.empty()) io::check_output_file(a->out, "--out");
         auto backend = default_registry().create(a->backend);
         std::vector<ParticleScore> scores(poses.size());
         PhaseTimes t;
@@ -67,21 +68,17 @@ void add_score_command(CLI::App& app) {
             throw Error("--map " + a->map + ", --template " + a->templ + ", --poses " + a->poses + ": " + e.what());
         }
 
-        std::ofstream file;
-        if (!a->out.empty()) {
-            file.open(a->out);
-            if (!file) throw Error(a->out + ": cannot write");
-        }
-        std::ostream& os = a->out.empty() ? std::cout : file;
-        os << "index,x,y,yaw,scale,ncc,cc,ssd,valid_samples,flags\n";
+        std::string csv = "index,x,y,yaw,scale,ncc,cc,ssd,valid_samples,flags\n";
         char buf[256];
         for (std::size_t i = 0; i < poses.size(); ++i) {
             const Pose& p = poses[i];
             const ParticleScore& s = scores[i];
             std::snprintf(buf, sizeof buf, "%zu,%.9g,%.9g,%.9g,%.9g,%.7f,%.7f,%.7f,%u,%u\n", i, p.x, p.y, p.yaw, p.scale, s.ncc,
                           s.cc, s.ssd, s.valid_samples, s.flags);
-            os << buf;
+            csv += buf;
         }
+        if (a->out.empty()) std::cout << csv;  // checked at exit (main.cpp)
+        else io::write_file_atomic(a->out, csv);
         std::cerr << backend->info().name << ": " << poses.size() << " poses, execute " << t.execute_ms << " ms\n";
     });
 }

@@ -12,6 +12,7 @@
 #include "options.hpp"
 #include "progress.hpp"
 #include "trn/error.hpp"
+#include "trn/io/output_folder.hpp"
 #include "trn/sim/air_format.hpp"
 #include "trn/sim/flight.hpp"
 #include "trn/sim/map_ageing.hpp"
@@ -26,6 +27,7 @@ struct SimulateArgs {
     std::uint64_t seed = 1;
     int map_year = 0, base_year = 2008;
     std::size_t frames = 0;
+    bool force = false;
 };
 
 void progress(std::size_t done, std::size_t total) { draw_progress(done, total, "frames"); }
@@ -84,25 +86,17 @@ void simulate(const SimulateArgs& a) {
     if (a.frames && a.seconds > 0) throw Error("give --frames or --seconds, not both");
     cfg.frames = a.frames ? a.frames : a.seconds > 0 ? static_cast<std::size_t>(std::llround(a.seconds * preset.fps)) : 0;
 
+    // The dataset is built whole in a staging folder next to --out and replaces it only when
+    // complete: a failed or killed run leaves the earlier dataset as it was.
+    io::StagedFolder staged(a.out, "simulate", a.force);
+    const std::string dir = staged.path();
     sim::Map base, world;
     int world_year = 0;
     make_maps(a, preset, base, world, world_year);
     sim::FlightSimulator flight(world, cfg);
 
-    sim::AirWriter writer(a.out);
-    save_gray(a.out + "/map.png", base.image.view());
-    sim::FlightInfo info;
-    info.scenario = preset.name;
-    info.map_file = "map.png";
-    info.metres_per_pixel = base.metres_per_pixel;
-    info.origin = base.origin;
-    info.camera = cfg.camera;
-    info.fps = preset.fps;
-    info.map_year = a.base_year;
-    info.rendered_year = world_year;
-    info.seed = a.seed;
-    sim::write_flight_info(a.out + "/flight.json", info);
-
+    sim::AirWriter writer(dir);
+    save_gray(dir + "/map.png", base.image.view());
     const auto t0 = std::chrono::steady_clock::now();
     const std::size_t total = flight.frame_count();
     sim::FlightFrame frame;
@@ -113,6 +107,19 @@ void simulate(const SimulateArgs& a) {
         if (frame.index % 10 == 0 || frame.index + 1 == total) progress(frame.index + 1, total);
     }
     writer.close();
+    sim::FlightInfo info;
+    info.scenario = preset.name;
+    info.map_file = "map.png";
+    info.metres_per_pixel = base.metres_per_pixel;
+    info.origin = base.origin;
+    info.camera = cfg.camera;
+    info.fps = preset.fps;
+    info.map_year = a.base_year;
+    info.rendered_year = world_year;
+    info.seed = a.seed;
+    info.frames = total;  // `--read` refuses a metadata.csv with fewer rows
+    sim::write_flight_info(dir + "/flight.json", info);
+    staged.commit();
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::cout << preset.name << ": " << total << " frames (" << total / preset.fps << " s of flight) in " << s << " s -> "
               << a.out << "\n";
@@ -128,6 +135,8 @@ void read_back(const std::string& folder) {
     std::size_t rows = 0;
     double path_m = 0, drift_m = 0, last_x = 0, last_y = 0;
     while (reader.next(r)) {
+        if (has_info && info.frames && rows == info.frames)
+            throw Error(reader.folder() + "/metadata.csv: more rows than the " + std::to_string(info.frames) + " frames flight.json declares");
         const GrayImage img = reader.load_image(r);
         if (has_info && (img.width != info.camera.width || img.height != info.camera.height))
             throw Error(reader.image_path(r) + ": " + std::to_string(img.width) + "x" + std::to_string(img.height) +
@@ -137,6 +146,9 @@ void read_back(const std::string& folder) {
         drift_m = std::hypot(r.svo_m.x - r.pose_m.x, r.svo_m.y - r.pose_m.y);
         ++rows;
     }
+    if (has_info && info.frames && rows < info.frames)
+        throw Error(folder + "/metadata.csv: " + std::to_string(rows) + " rows, but flight.json declares " + std::to_string(info.frames) +
+                    " frames (an incomplete or cut dataset)");
     std::cout << folder << ": " << rows << " frames";
     if (has_info) std::cout << ", scenario " << info.scenario << ", map " << info.map_file << " at " << info.metres_per_pixel << " m/px";
     std::cout << ", path " << path_m << " m, final odometry error " << drift_m << " m\n";
@@ -166,6 +178,7 @@ void add_simulate_command(CLI::App& app) {
     cmd->add_option("--wobble-deg", a->wobble_deg, "Camera roll/pitch wobble (0: gimbal-stabilised)")->capture_default_str()->check(real_in(0, 45));
     cmd->add_option("-o,--out", a->out, "Output flight folder");
     cmd->add_option("--read", a->read, "Read an AIR flight folder back and check it, instead of simulating");
+    cmd->add_flag("--force", a->force, "Write into a non-empty folder that is not an earlier simulate output (its other files stay)");
     cmd->callback([a] {
         if (!a->read.empty()) return read_back(a->read);
         if (a->scenario.empty()) throw Error("--scenario is required (or --read DIR)");

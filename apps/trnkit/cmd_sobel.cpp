@@ -4,7 +4,9 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "trn/io/atomic_file.hpp"
 #include "trn/io/image_io.hpp"
+#include "trn/io/output_folder.hpp"
 #include "trn/registry.hpp"
 
 namespace trn::cli {
@@ -20,6 +22,11 @@ void add_sobel_command(CLI::App& app) {
     cmd->add_option("-o,--out", a->out, "Output folder (created if missing)")->capture_default_str();
     cmd->callback([a] {
         const GrayImage img = load_gray(a->image);
+        // Two fixed file names, each replaced whole: checked like single output files, and the
+        // folder (often ".") is not claimed as sobel's own.
+        const std::string px = a->out + "/gx.png", py = a->out + "/gy.png";
+        io::check_output_folder(a->out, "sobel", /*force=*/true);
+        if (std::filesystem::exists(a->out)) io::check_output_file(px, "--out"), io::check_output_file(py, "--out");
         auto backend = default_registry().create(a->backend);
         std::vector<std::int16_t> gx(img.pixels.size()), gy(img.pixels.size());
         PhaseTimes t;
@@ -27,7 +34,6 @@ void add_sobel_command(CLI::App& app) {
         std::error_code ec;
         std::filesystem::create_directories(a->out, ec);
         if (ec) throw Error(a->out + ": cannot create folder (" + ec.message() + ")");
-        const std::string px = a->out + "/gx.png", py = a->out + "/gy.png";
         save_gradient(px, {gx.data(), img.width, img.height, img.width});
         save_gradient(py, {gy.data(), img.width, img.height, img.width});
         std::cout << backend->info().name << ": " << img.width << "x" << img.height << " upload " << t.upload_ms

@@ -1,11 +1,17 @@
 // trnkit: command-line entry point. Subcommands are registered from cmd_*.cpp; every failure
 // prints one line naming what was wrong and exits non-zero.
+#include <cerrno>
+#include <csignal>
+#include <cstdio>
+#include <cstring>
 #include <iostream>
 
 #include "commands.hpp"
 #include "trn/error.hpp"
 
-int main(int argc, char** argv) {
+namespace {
+
+int run(int argc, char** argv) {
     CLI::App app{"trnkit: terrain-relative navigation kit (particle-filter map matching, Sobel, energy)"};
     app.require_subcommand(1);
     trn::cli::add_devices_command(app);
@@ -30,4 +36,25 @@ int main(int argc, char** argv) {
         return 2;
     }
     return 0;
+}
+
+// Output on stdout is results too (score's CSV, integrate's JSON): flush it and check, so
+// `trnkit ... > /dev/full` or a cut pipe to a full disk exits non-zero instead of 0 with lost data.
+int check_stdout(int code) {
+    errno = 0;
+    std::cout.flush();  // (synced with stdio: this already flushes stdout)
+    int why = errno;
+    if (std::fflush(stdout) != 0) why = errno;
+    if (std::cout && !std::ferror(stdout)) return code;
+    std::cerr << "trnkit: error: standard output: write failed" << (why ? std::string(" (") + std::strerror(why) + ")" : "") << "\n";
+    return code ? code : 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    // Past a file-size limit (ulimit -f) write() then fails with EFBIG and the writer reports the
+    // file, instead of the process dying silently and leaving a cut file behind.
+    std::signal(SIGXFSZ, SIG_IGN);
+    return check_stdout(run(argc, argv));
 }

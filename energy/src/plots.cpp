@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -14,16 +15,14 @@
 
 #include "trn/energy/stats.hpp"
 #include "trn/error.hpp"
+#include "trn/io/atomic_file.hpp"
 
 extern char** environ;
 
 namespace trn::energy {
 namespace {
 
-void write(const std::string& path, const std::string& text) {
-    std::ofstream f(path, std::ios::binary);
-    if (!f || !(f << text)) throw Error(path + ": cannot write");
-}
+void write(const std::string& path, const std::string& text) { io::write_file_atomic(path, text); }
 
 // gnuplot strings are single-quoted; a quote inside is doubled.
 std::string quoted_path(const std::string& s) {
@@ -32,7 +31,13 @@ std::string quoted_path(const std::string& s) {
     return out + "'";
 }
 
-void run_gnuplot(const std::string& script_path, const std::string& png) {
+// gnuplot draws into `drawn` (a temporary beside `png`); only a finished image is renamed to `png`,
+// so a failed or killed gnuplot never leaves a cut image under the final name.
+void run_gnuplot(const std::string& script_path, const std::string& png, const std::string& drawn) {
+    struct Cleanup {
+        const std::string& path;
+        ~Cleanup() { std::remove(path.c_str()); }
+    } cleanup{drawn};
     const std::string exe = find_gnuplot();
     if (exe.empty()) throw Error("plot " + png + ": gnuplot not found on PATH (install gnuplot-nox, see scripts/install-deps.sh)");
     pid_t pid = 0;
@@ -42,7 +47,10 @@ void run_gnuplot(const std::string& script_path, const std::string& png) {
     int status = 0;
     waitpid(pid, &status, 0);
     if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) throw Error("plot " + png + ": gnuplot failed on " + script_path);
-    if (!std::filesystem::exists(png)) throw Error("plot " + png + ": gnuplot wrote no image");
+    std::error_code ec;
+    if (!std::filesystem::exists(drawn, ec) || std::filesystem::file_size(drawn, ec) == 0) throw Error("plot " + png + ": gnuplot wrote no image");
+    std::filesystem::rename(drawn, png, ec);
+    if (ec) throw Error("plot " + png + ": cannot replace (" + ec.message() + ")");
 }
 
 }  // namespace
@@ -60,14 +68,14 @@ std::string find_gnuplot() {
 }
 
 void plot_power_trace(const PowerTrace& trace, const RunReport& run, const std::string& png) {
-    const std::string dat = png + ".dat", gp = png + ".gp";
+    const std::string dat = png + ".dat", gp = png + ".gp", drawn = io::temporary_sibling(png);
     const double t0 = run.frames.empty() ? trace.t.front() : run.frames.front().energy.start;
     std::ostringstream d;
     d.precision(10);
     for (std::size_t i = 0; i < trace.size(); ++i) d << trace.t[i] - t0 << " " << trace.w[i] << "\n";
     write(dat, d.str());
     std::ostringstream s;
-    s << "set terminal pngcairo size 1400,500 noenhanced\nset output " << quoted_path(png) << "\n";
+    s << "set terminal pngcairo size 1400,500 noenhanced\nset output " << quoted_path(drawn) << "\n";
     s << "set title " << quoted_path("Power trace with frames shaded: " + run.platform) << "\n";
     s << "set xlabel 'time from first frame start (s)'\nset ylabel 'power (W)'\nset grid\n";
     int n = 1;
@@ -77,15 +85,15 @@ void plot_power_trace(const PowerTrace& trace, const RunReport& run, const std::
     s << "plot " << quoted_path(dat) << " using 1:2 with linespoints pt 7 ps 0.3 lc rgb '#2166ac' title 'power', "
       << run.idle_w << " with lines dt 2 lc rgb 'black' title 'idle baseline'\n";
     write(gp, s.str());
-    run_gnuplot(gp, png);
+    run_gnuplot(gp, png, drawn);
 }
 
 void plot_histograms(const std::vector<PlotSeries>& series, const std::string& png, const std::string& xlabel) {
     if (series.empty()) throw Error("plot " + png + ": no data");
-    const std::string gp = png + ".gp";
+    const std::string gp = png + ".gp", drawn = io::temporary_sibling(png);
     std::ostringstream s;
     const int rows = static_cast<int>(series.size());
-    s << "set terminal pngcairo size 900," << 280 * rows << " noenhanced\nset output " << quoted_path(png) << "\n";
+    s << "set terminal pngcairo size 900," << 280 * rows << " noenhanced\nset output " << quoted_path(drawn) << "\n";
     s << "set multiplot layout " << rows << ",1\nset style fill solid 0.6 border -1\nset grid\nset ylabel 'frames'\n";
     for (std::size_t k = 0; k < series.size(); ++k) {
         const auto& v = series[k].values;
@@ -107,14 +115,14 @@ void plot_histograms(const std::vector<PlotSeries>& series, const std::string& p
     }
     s << "unset multiplot\n";
     write(gp, s.str());
-    run_gnuplot(gp, png);
+    run_gnuplot(gp, png, drawn);
 }
 
 void plot_boxes(const std::vector<PlotSeries>& series, const std::string& png, const std::string& ylabel) {
     if (series.empty()) throw Error("plot " + png + ": no data");
-    const std::string gp = png + ".gp";
+    const std::string gp = png + ".gp", drawn = io::temporary_sibling(png);
     std::ostringstream s;
-    s << "set terminal pngcairo size " << 300 + 180 * series.size() << ",600 noenhanced\nset output " << quoted_path(png) << "\n";
+    s << "set terminal pngcairo size " << 300 + 180 * series.size() << ",600 noenhanced\nset output " << quoted_path(drawn) << "\n";
     s << "set style data boxplot\nset style boxplot outliers pointtype 7\nset style fill solid 0.4 border -1\nset grid ytics\n";
     s << "set ylabel " << quoted_path(ylabel) << "\nset xtics (";
     for (std::size_t k = 0; k < series.size(); ++k) s << (k ? ", " : "") << quoted_path(series[k].name) << " " << k + 1;
@@ -129,7 +137,7 @@ void plot_boxes(const std::vector<PlotSeries>& series, const std::string& png, c
     }
     s << "\n";
     write(gp, s.str());
-    run_gnuplot(gp, png);
+    run_gnuplot(gp, png, drawn);
 }
 
 }  // namespace trn::energy

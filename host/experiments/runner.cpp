@@ -10,6 +10,8 @@
 #include "trn/error.hpp"
 #include "trn/parse_number.hpp"
 #include "trn/experiments/experiment.hpp"
+#include "trn/io/atomic_file.hpp"
+#include "trn/io/output_folder.hpp"
 #include "trn/registry.hpp"
 
 namespace trn::experiments {
@@ -54,15 +56,8 @@ Json read_json(const std::string& path) {
     }
 }
 
-void write_json(const std::string& path, const Json& j) {
-    const std::string tmp = path + ".tmp";
-    {
-        std::ofstream out(tmp);
-        out << j.dump(1) << "\n";
-        if (!out) throw Error(tmp + ": write failed");
-    }
-    fs::rename(tmp, path);  // a job file is either complete or absent
-}
+// A job file is either complete or absent (a run killed while writing leaves the old state).
+void write_json(const std::string& path, const Json& j) { io::write_file_atomic(path, j.dump(1) + "\n"); }
 
 std::string git_commit() {
 #ifdef TRN_SOURCE_DIR
@@ -112,9 +107,14 @@ std::size_t run_experiment(const ExperimentOptions& o) {
         return jobs.size();
     }
     if (!o.job.empty() && !ids.count(o.job)) throw Error("experiment: --job " + o.job + ": no such job in " + o.study + " (see --list-jobs)");
+    const Shard shard = parse_shard(o.shard);  // checked before the output folder is touched
 
+    // Every option checked: now the folder (this study's earlier output resumes; others are refused).
+    io::open_output_folder(out, "experiment " + o.study, o.force);
     const std::string jobs_dir = out + "/jobs";
-    fs::create_directories(jobs_dir);
+    std::error_code ec;
+    fs::create_directories(jobs_dir, ec);
+    if (ec) throw Error(jobs_dir + ": cannot create folder (" + ec.message() + ")");
     auto job_path = [&](const Json& j) { return jobs_dir + "/" + j.at("id").get<std::string>() + ".json"; };
     // A finished job is reused only when it was made with exactly this configuration.
     auto finished = [&](const Json& j) {
@@ -128,7 +128,6 @@ std::size_t run_experiment(const ExperimentOptions& o) {
     };
 
     if (!o.merge_only) {
-        const Shard shard = parse_shard(o.shard);
         std::vector<const Json*> todo;
         for (std::size_t i = shard.index; i < jobs.size(); i += shard.count)
             if ((o.job.empty() || jobs[i].at("id") == o.job) && !finished(jobs[i])) todo.push_back(&jobs[i]);
@@ -172,8 +171,7 @@ std::size_t run_experiment(const ExperimentOptions& o) {
     if (missing)
         markdown = "**PARTIAL RUN: " + std::to_string(outputs.size()) + " of " + std::to_string(jobs.size()) +
                    " jobs finished; cells are means over the finished jobs only.**\n\n" + markdown;
-    std::ofstream md(out + "/results.md");
-    md << markdown;
+    io::write_file_atomic(out + "/results.md", markdown);
     Json prov{{"study", o.study}, {"seed", o.seed}, {"git_commit", git_commit()}, {"backend", o.backend},
               {"backend_devices", devices}, {"jobs", jobs.size()}, {"jobs_merged", outputs.size()}, {"job_wall_s_total", wall_s}, {"config", config}};
     write_json(out + "/provenance.json", prov);

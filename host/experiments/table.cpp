@@ -7,6 +7,7 @@
 #include <iostream>
 
 #include "trn/error.hpp"
+#include "trn/io/atomic_file.hpp"
 
 namespace trn::experiments {
 
@@ -43,18 +44,15 @@ std::string csv_cell(const std::string& c) {
 }  // namespace
 
 void Table::write(const std::string& folder, const std::string& stem) const {
-    const std::string md = folder + "/" + stem + ".md", csv = folder + "/" + stem + ".csv";
-    std::ofstream m(md);
-    m << markdown();
-    if (!m) throw Error(md + ": write failed");
-    std::ofstream c(csv);
-    for (std::size_t i = 0; i < header.size(); ++i) c << (i ? "," : "") << csv_cell(header[i]);
-    c << "\n";
+    std::string csv;
+    for (std::size_t i = 0; i < header.size(); ++i) csv += (i ? "," : "") + csv_cell(header[i]);
+    csv += "\n";
     for (const auto& row : rows) {
-        for (std::size_t i = 0; i < row.size(); ++i) c << (i ? "," : "") << csv_cell(row[i]);
-        c << "\n";
+        for (std::size_t i = 0; i < row.size(); ++i) csv += (i ? "," : "") + csv_cell(row[i]);
+        csv += "\n";
     }
-    if (!c) throw Error(csv + ": write failed");
+    io::write_file_atomic(folder + "/" + stem + ".md", markdown());
+    io::write_file_atomic(folder + "/" + stem + ".csv", csv);
 }
 
 void line_plot(const std::string& png, const std::string& title, const std::string& xlabel, const std::string& ylabel,

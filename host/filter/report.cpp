@@ -9,6 +9,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "trn/error.hpp"
+#include "trn/io/atomic_file.hpp"
 
 namespace trn::filter {
 namespace {
@@ -42,7 +43,9 @@ std::string shell_quoted(const std::string& s) {
 }  // namespace
 
 void write_rows_csv(const std::string& path, const std::vector<LocalizationRow>& rows) {
-    std::ofstream out = open_out(path);
+    io::AtomicFile file(path);
+    std::ostream& out = file.stream();
+    out.precision(10);
     out << "frame,time_s,distance_m,truth_x,truth_y,odometry_x,odometry_y,estimate_x,estimate_y,estimate_yaw,best_x,best_y,"
            "error_m,odometry_error_m,particles,off_map,score_ms,step_ms,odometry_lost,frame_missing,reinitialised\n";
     for (const LocalizationRow& r : rows)
@@ -50,7 +53,7 @@ void write_rows_csv(const std::string& path, const std::vector<LocalizationRow>&
             << r.odometry_y << ',' << r.estimate_x << ',' << r.estimate_y << ',' << r.estimate_yaw << ',' << r.best_x << ',' << r.best_y
             << ',' << r.error_m << ',' << r.odometry_error_m << ',' << r.particles << ',' << r.off_map << ',' << r.score_ms << ','
             << r.step_ms << ',' << r.odometry_lost << ',' << r.frame_missing << ',' << r.reinitialised << '\n';
-    close_out(out, path);
+    file.commit();
 }
 
 void write_summary_json(const std::string& path, const LocalizationSummary& s, const std::map<std::string, std::string>& strings,
@@ -74,9 +77,7 @@ void write_summary_json(const std::string& path, const LocalizationSummary& s, c
     j["reinitialisations"] = s.counters.reinitialisations;
     for (const auto& [k, v] : strings) j[k] = v;
     for (const auto& [k, v] : numbers) j[k] = num(v);
-    std::ofstream out = open_out(path);
-    out << j.dump(2) << '\n';
-    close_out(out, path);
+    io::write_file_atomic(path, j.dump(2) + '\n');
 }
 
 std::string format_summary(const LocalizationSummary& s) {

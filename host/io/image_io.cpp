@@ -5,6 +5,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "trn/error.hpp"
+#include "trn/io/atomic_file.hpp"
 
 namespace trn {
 
@@ -22,15 +23,21 @@ GrayImage load_gray(const std::string& path) {
     return img;
 }
 
+// Encoded in memory (format from the extension), then written whole: a full disk or a killed run
+// never leaves a cut image under the final name.
 void save_gray(const std::string& path, GrayView image) {
+    const std::string ext = std::filesystem::path(path).extension().string();
+    if (ext.empty()) throw Error(path + ": no image extension (.png, .jpg, .tif, ...)");
     const cv::Mat m(image.height, image.width, CV_8UC1, const_cast<std::uint8_t*>(image.data), image.stride);
+    std::vector<uchar> bytes;
     bool ok = false;
     try {
-        ok = cv::imwrite(path, m);
+        ok = cv::imencode(ext, m, bytes);
     } catch (const cv::Exception& e) {
-        throw Error(path + ": cannot write image (" + e.msg + ")");
+        throw Error(path + ": cannot encode image (" + e.msg + ")");
     }
-    if (!ok) throw Error(path + ": cannot write image");
+    if (!ok) throw Error(path + ": cannot encode image as " + ext);
+    io::write_file_atomic(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 
 void save_gradient(const std::string& path, ImageView<const std::int16_t> g) {

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "trn/error.hpp"
+#include "trn/io/atomic_file.hpp"
 
 namespace trn::sim {
 namespace {
@@ -170,9 +171,8 @@ void write_flight_info(const std::string& path, const FlightInfo& info) {
     j["map_year"] = info.map_year;
     j["rendered_year"] = info.rendered_year;
     j["seed"] = info.seed;
-    std::ofstream out(path);
-    out << j.dump(2) << "\n";
-    if (!out) throw Error(path + ": cannot write");
+    if (info.frames) j["frames"] = info.frames;
+    io::write_file_atomic(path, j.dump(2) + "\n");
 }
 
 namespace {
@@ -225,6 +225,7 @@ FlightInfo read_flight_info(const std::string& path) {
             if (j.contains(key) && (*year = int_field(j, key, 0, 3000, where)) != 0 && *year < 1900)
                 throw Error(where + key + " " + std::to_string(*year) + " must be 0 (unknown) or a year from 1900");
         info.seed = j.value("seed", std::uint64_t{0});
+        info.frames = j.value("frames", std::size_t{0});
     } catch (const nlohmann::json::exception& e) {
         throw Error(path + ": not a valid flight description (" + e.what() + ")");
     }
@@ -238,14 +239,12 @@ AirWriter::AirWriter(const std::string& folder) : folder_(folder) {
     std::error_code ec;
     std::filesystem::create_directories(folder, ec);
     if (ec) throw Error(folder + ": cannot create folder (" + ec.message() + ")");
-    const std::string path = folder + "/metadata.csv";
-    csv_.open(path);
-    if (!csv_) throw Error(path + ": cannot write");
-    for (std::size_t i = 0; i < kColumns.size(); ++i) csv_ << (i ? "," : "") << kColumns[i];
-    csv_ << "\n";
+    for (std::size_t i = 0; i < kColumns.size(); ++i) csv_ += (i ? "," : "") + kColumns[i];
+    csv_ += "\n";
 }
 
 void AirWriter::write(const AirRecord& r, GrayView image) {
+    if (closed_) throw Error(folder_ + "/metadata.csv: written after close()");
     if (r.filename.empty()) throw Error(folder_ + "/metadata.csv: a record has no file name");
     if (!image.empty()) save_gray(folder_ + "/" + r.filename, image);
     char buf[768];
@@ -254,14 +253,14 @@ void AirWriter::write(const AirRecord& r, GrayView image) {
                   r.latitude_deg, r.longitude_deg, r.relative_altitude_m, r.imu.x, r.imu.y, r.imu.z, r.imu.w, r.pose_m.x,
                   r.pose_m.y, r.pose_m.z, r.orientation.x, r.orientation.y, r.orientation.z, r.orientation.w, r.map_x,
                   r.map_y, r.svo_m.x, r.svo_m.y, r.svo_m.z);
-    csv_ << quote_if_needed(r.filename) << buf;
-    if (!csv_) throw Error(folder_ + "/metadata.csv: write failed");
+    csv_ += quote_if_needed(r.filename);
+    csv_ += buf;
 }
 
 void AirWriter::close() {
-    csv_.flush();
-    if (!csv_) throw Error(folder_ + "/metadata.csv: write failed");
-    csv_.close();
+    if (closed_) return;
+    io::write_file_atomic(folder_ + "/metadata.csv", csv_);
+    closed_ = true;
 }
 
 // ---- parser ----

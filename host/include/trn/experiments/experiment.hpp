@@ -25,6 +25,7 @@ struct ExperimentOptions {
     bool no_merge = false;       // run jobs only (cluster shards); merge later
     bool partial = false;        // merge whatever jobs are finished (tables say so); for documented subsets
     bool no_plots = false;
+    bool force = false;          // write into a non-empty folder that is not this study's output
     bool progress = true;        // progress bar on stderr
 };
 

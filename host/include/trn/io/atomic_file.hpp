@@ -5,6 +5,9 @@
 //    naming the destination, never a silently cut file),
 //  - rename() publishes the complete file; on any failure the temporary is removed and an earlier
 //    file of that name is left as it was.
+// A destination that exists and is not a regular file (/dev/full, /dev/stdout, a FIFO) cannot be
+// replaced by a rename: it is written in place, with the same checks. A symbolic link to a regular
+// file is followed, so the link stays and its target is replaced.
 #include <sstream>
 #include <string>
 #include <string_view>
@@ -35,6 +38,11 @@ private:
 
 // The whole file in one call (same rules as AtomicFile).
 void write_file_atomic(const std::string& path, std::string_view bytes);
+
+// Throws trn::Error ("<option> <path>: why") unless a file can be written at `path` by
+// write_file_atomic: not a folder, its folder exists and is writable (or, for a special file such
+// as /dev/null, the file itself is writable). For checking outputs before any work is done.
+void check_output_file(const std::string& path, const std::string& option = "");
 
 // A temporary name next to `path` (same folder, so rename() stays on one file system).
 std::string temporary_sibling(const std::string& path);

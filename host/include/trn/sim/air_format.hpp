@@ -65,22 +65,25 @@ struct FlightInfo {
     int map_year = 0;              // year of the localization map (0: unknown)
     int rendered_year = 0;         // year of the map the frames were rendered from
     std::uint64_t seed = 0;
+    std::size_t frames = 0;        // rows metadata.csv must have (0: not declared); a shorter file is cut
 };
 void write_flight_info(const std::string& path, const FlightInfo& info);
 FlightInfo read_flight_info(const std::string& path);
 
 class AirWriter {
 public:
-    // Creates the folder (and parents) and metadata.csv with its header.
+    // Creates the folder (and parents). metadata.csv appears only at close(), complete: a run
+    // that stops early leaves no metadata.csv rather than a cut one.
     explicit AirWriter(const std::string& folder);
-    // Writes the image (when not empty) under record.filename and appends the row.
+    // Writes the image (when not empty) under record.filename and keeps the row for close().
     void write(const AirRecord& record, GrayView image = {});
-    void close();  // flushes; throws when the disk write failed
+    void close();  // writes metadata.csv whole; throws naming the file when the write failed
     const std::string& folder() const { return folder_; }
 
 private:
     std::string folder_;
-    std::ofstream csv_;
+    std::string csv_;  // metadata.csv so far
+    bool closed_ = false;
 };
 
 // Parses metadata.csv rows from any stream.

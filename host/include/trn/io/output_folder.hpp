@@ -1,0 +1,54 @@
+#pragma once
+// Output folders of trnkit commands. A folder a command writes carries a marker file,
+// ".trnkit-output", whose one line names that command ("trnkit simulate"). A command writes only
+// into a folder that is absent, empty or marked as its own earlier output; any other non-empty
+// folder is refused (its files are someone else's) unless `force` is given. Everything is checked
+// before any work starts, so a bad --out costs nothing and touches nothing.
+#include <string>
+
+namespace trn::io {
+
+inline constexpr const char* kOutputMarker = ".trnkit-output";
+
+// What a folder is to a command about to write there.
+enum class FolderState { Absent, Empty, OwnOutput, Foreign };
+
+// Throws trn::Error ("<option> <folder>: why") when `command` may not write into `folder`: a file
+// is in the way, the folder (or the nearest existing folder above it) is not writable, or the
+// folder is Foreign and `force` is false. Returns the folder's state otherwise.
+FolderState check_output_folder(const std::string& folder, const std::string& command, bool force,
+                                const std::string& option = "--out");
+
+// check_output_folder, then creates the folder (with parents) and marks it as `command`'s output
+// (a Foreign folder allowed by `force` is adopted: its other files stay, later runs need no
+// --force). Call after every other check, right before the first write.
+void open_output_folder(const std::string& folder, const std::string& command, bool force,
+                        const std::string& option = "--out");
+
+// A folder built whole under a staging name next to its target ("<target>.partial-<pid>") and put
+// in the target's place only by commit(): a failed or killed run leaves the earlier output as it
+// was (and at most a staging folder, never a half-written target), and nothing of an earlier run
+// survives into the new one.
+class StagedFolder {
+public:
+    // Checks the target (check_output_folder) and creates an empty staging folder.
+    StagedFolder(const std::string& target, std::string command, bool force, const std::string& option = "--out");
+    ~StagedFolder();  // without commit() the staging folder and everything in it are removed
+    StagedFolder(const StagedFolder&) = delete;
+    StagedFolder& operator=(const StagedFolder&) = delete;
+
+    const std::string& path() const { return staging_; }    // write the output here
+    const std::string& target() const { return target_; }
+    // Marks the staging folder and replaces the target by it (an atomic exchange where the file
+    // system supports it); a Foreign target (allowed by force) keeps its other files, receives the
+    // new ones and stays unmarked, so it is never replaced whole. Throws trn::Error naming the
+    // target on failure.
+    void commit();
+
+private:
+    std::string target_, staging_, command_;
+    FolderState state_;
+    bool committed_ = false;
+};
+
+}  // namespace trn::io
