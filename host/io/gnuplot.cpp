@@ -109,17 +109,17 @@ std::string gnuplot_string(std::string_view text) {
     };
     std::size_t start = 0;
     while (start <= clean.size()) {
-        const std::size_t quote = std::min(clean.find('\'', start), clean.size());
-        if (quote > start) {
+        const std::size_t special = std::min(clean.find_first_of("'@", start), clean.size());
+        if (special > start) {
             separate();
             out += '\'';
-            out.append(clean, start, quote - start);
+            out.append(clean, start, special - start);
             out += '\'';
         }
-        if (quote == clean.size()) break;
+        if (special == clean.size()) break;
         separate();
-        out += "\"'\"";
-        start = quote + 1;
+        out += clean[special] == '\'' ? "\"\\047\"" : "\"\\100\"";  // octal escapes: no quote, no @ in the script
+        start = special + 1;
     }
     return out.empty() ? "''" : out;
 }

@@ -2,7 +2,8 @@
 // Labels that try to make gnuplot run a command. Each one creates `canary` if it gets out of its
 // string: a line break followed by gnuplot's `system`, a quote that ends the string early (also
 // the doubled-quote forms gnuplot's scanner splits), a trailing backslash (line continuation), a
-// backquote command, `!` (shell escape), @macros, control characters and invalid UTF-8.
+// backquote command, `!` (shell escape), @macros (also after a quote), control characters and
+// invalid UTF-8.
 #include <string>
 #include <vector>
 
@@ -25,6 +26,7 @@ inline std::vector<std::string> injection_payloads(const std::string& canary) {
         "\n!" + touch + "\n",
         "x; !" + touch,
         "@GPVAL_TERM @x @@ \nx = 'system(\"" + touch + "\")'\n@x",
+        "it's @GPVAL_TERM @GPVAL_PWD @x",
         "$(" + touch + ") ; " + touch,
         std::string("nul") + '\0' + "\nsystem \"" + touch + "\"\n#",
         "tab\there\x7f del \xc2\x85 c1 \x85 lone",

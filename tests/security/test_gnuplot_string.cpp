@@ -16,15 +16,18 @@ namespace fs = std::filesystem;
 using io::gnuplot_sanitized;
 using io::gnuplot_string;
 
-// The value of an expression made only of '...' pieces without quotes inside and "'" pieces joined
-// by '.'; fails the test on anything else.
+// The value of an expression made only of '...' pieces without quotes inside and "\047" / "\100"
+// pieces joined by '.'; fails the test on anything else.
 std::string evaluate_pieces(const std::string& expr) {
     std::string value;
     std::size_t i = 0;
     while (i < expr.size()) {
-        if (expr.compare(i, 3, "\"'\"") == 0) {
+        if (expr.compare(i, 6, "\"\\047\"") == 0) {
             value += '\'';
-            i += 3;
+            i += 6;
+        } else if (expr.compare(i, 6, "\"\\100\"") == 0) {
+            value += '@';
+            i += 6;
         } else if (expr[i] == '\'') {
             const std::size_t end = expr.find('\'', i + 1);
             EXPECT_NE(end, std::string::npos) << expr;
@@ -57,18 +60,19 @@ TEST(GnuplotString, SanitizedReplacesControlCharactersAndInvalidUtf8) {
     EXPECT_EQ(gnuplot_sanitized("quotes ' \" ` \\ ! @ $ ; #"), "quotes ' \" ` \\ ! @ $ ; #");
 }
 
-TEST(GnuplotString, ApostrophesBecomeSeparatePieces) {
+TEST(GnuplotString, ApostrophesAndAtSignsBecomeOctalEscapes) {
     EXPECT_EQ(gnuplot_string(""), "''");
     EXPECT_EQ(gnuplot_string("abc"), "'abc'");
-    EXPECT_EQ(gnuplot_string("it's"), "'it'.\"'\".'s'");
-    EXPECT_EQ(gnuplot_string("''"), "\"'\".\"'\"");
+    EXPECT_EQ(gnuplot_string("it's"), R"('it'."\047".'s')");
+    EXPECT_EQ(gnuplot_string("''"), R"("\047"."\047")");
+    EXPECT_EQ(gnuplot_string("a@b"), R"('a'."\100".'b')");
     EXPECT_EQ(gnuplot_string("a\nb"), "'a?b'");
 }
 
 TEST(GnuplotString, EveryPayloadIsOneLineOfQuotedPieces) {
     for (const std::string& p : injection_payloads("/tmp/CANARY")) {
         const std::string expr = gnuplot_string(p);
-        for (unsigned char c : expr) EXPECT_TRUE(c >= 0x20 && c != 0x7F) << "control byte " << int(c) << " in " << expr;
+        for (unsigned char c : expr) EXPECT_TRUE(c >= 0x20 && c != 0x7F && c != '@') << "byte " << int(c) << " in " << expr;
         EXPECT_EQ(evaluate_pieces(expr), gnuplot_sanitized(p)) << expr;
     }
 }
@@ -90,6 +94,18 @@ TEST_F(GnuplotRun, RealGnuplotShowsEveryPayloadAsTextAndRunsNothing) {
     std::string expected;
     for (const std::string& p : payloads) expected += gnuplot_sanitized(p) + "\n";
     EXPECT_EQ(slurp(path("printed.txt")), expected);
+}
+
+// gnuplot's @macro expander loses track of quotes after a "'" piece and pastes a string variable
+// into the line as code; GPVAL_PWD is the folder gnuplot runs in, whose name a user chooses.
+TEST_F(GnuplotRun, MacroOfTheOutputFolderNameStaysText) {
+    if (!io::gnuplot_available()) GTEST_SKIP() << "gnuplot not installed (scripts/install-deps.sh installs gnuplot-nox)";
+    const fs::path folder = dir_ / "x'; system 'touch CANARY'; print '";
+    fs::create_directories(folder);
+    const std::string label = "it's @GPVAL_PWD";
+    io::run_gnuplot({folder.string(), "m.gp", "set print 'printed.txt'\nprint " + gnuplot_string(label) + "\n", {}, "m.log", {}});
+    EXPECT_FALSE(fs::exists(folder / "CANARY")) << "the folder name ran as code";
+    EXPECT_EQ(slurp((folder / "printed.txt").string()), label + "\n");
 }
 
 TEST(GnuplotNames, OnlyPlainBasenamesAreAccepted) {

@@ -13,10 +13,12 @@
 
 namespace trn::io {
 
-// A gnuplot string expression whose value is gnuplot_sanitized(text). Single-quoted segments
-// (gnuplot 5.4 expands nothing inside single quotes: no `command`, no @macro, no \ escapes);
-// an apostrophe is a "'" segment joined with `.`, because gnuplot's scanner splits a
-// single-quoted string at doubled quotes that open it or follow each other ('''x', 'a''''b').
+// A gnuplot string expression whose value is gnuplot_sanitized(text): single-quoted segments
+// (gnuplot 5.4 expands nothing inside single quotes: no `command`, no \ escapes) joined with `.`
+// to "\047" for an apostrophe and "\100" for an @. Not the doubled quote '': gnuplot's scanner
+// splits a string at doubled quotes that open it or follow each other ('''x', 'a''''b'). Not "'":
+// the @macro expander then loses track of the quotes and pastes a later @NAME (e.g. GPVAL_PWD, the
+// output folder's name) into the line as code.
 std::string gnuplot_string(std::string_view text);
 
 // The text a label shows: every control character (C0 incl. NUL, newline, CR, tab; DEL; C1) and
