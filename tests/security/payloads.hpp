@@ -27,6 +27,7 @@ inline std::vector<std::string> injection_payloads(const std::string& canary) {
         "x; !" + touch,
         "@GPVAL_TERM @x @@ \nx = 'system(\"" + touch + "\")'\n@x",
         "it's @GPVAL_TERM @GPVAL_PWD @x",
+        "brace { if (1) { system(\"" + touch + "\") } # }",
         "$(" + touch + ") ; " + touch,
         std::string("nul") + '\0' + "\nsystem \"" + touch + "\"\n#",
         "tab\there\x7f del \xc2\x85 c1 \x85 lone",
