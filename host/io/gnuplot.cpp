@@ -44,6 +44,9 @@ bool plain_char(char c) {
     return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '.' || c == '_' || c == '-';
 }
 
+// A path as an error message shows it: on one line (the CLI prints errors as one line).
+std::string shown(const std::string& path) { return gnuplot_sanitized(path); }
+
 void check_name(const std::string& name, const std::string& role) {
     if (!is_plain_basename(name))
         throw Error("gnuplot: " + role + " '" + gnuplot_sanitized(name) + "' is not a plain file name ([A-Za-z0-9._-], no leading '-')");
@@ -147,7 +150,7 @@ std::string gnuplot_png_terminal(int width, int height, std::string_view font) {
 PlotTarget plot_target(const std::string& path) {
     const fs::path p(path);
     const std::string file = p.filename().string();
-    if (file.empty() || file == "." || file == "..") throw Error(path + ": not a file name for an image");
+    if (file.empty() || file == "." || file == "..") throw Error(shown(path) + ": not a file name for an image");
     const std::string folder = p.parent_path().string();
     return {folder.empty() ? "." : folder, plain_basename(file), path};
 }
@@ -164,13 +167,13 @@ void run_gnuplot(const GnuplotJob& job) {
     for (const auto& [name, bytes] : job.data) add(name, "data file");
     for (const PlotTarget& image : job.images) {
         add(image.name, "image");
-        if (image.folder != job.folder) throw Error("gnuplot: image " + image.path + " is not in " + job.folder);
+        if (image.folder != job.folder) throw Error("gnuplot: image " + shown(image.path) + " is not in " + shown(job.folder));
     }
     const std::string dir = job.folder + "/";
     for (const auto& [name, bytes] : job.data) write_file_atomic(dir + name, bytes);
     write_file_atomic(dir + job.script_name, job.script);
 
-    const std::string script = dir + job.script_name, log = dir + job.log_name;
+    const std::string script = shown(dir + job.script_name), log = shown(dir + job.log_name);
     auto remove_images = [&] {
         std::error_code ec;
         for (const PlotTarget& image : job.images) fs::remove(dir + image.name, ec);
@@ -190,7 +193,7 @@ void run_gnuplot(const GnuplotJob& job) {
         std::error_code ec;
         if (fs::file_size(made, ec) == 0 || ec) {
             remove_images();
-            throw Error("gnuplot wrote no image " + made + " from " + script + " (see " + log + ")");
+            throw Error("gnuplot wrote no image " + shown(made) + " from " + script + " (see " + log + ")");
         }
     }
     for (const PlotTarget& image : job.images) {
@@ -198,7 +201,7 @@ void run_gnuplot(const GnuplotJob& job) {
         if (made == image.path) continue;
         std::error_code ec;
         fs::rename(made, image.path, ec);
-        if (ec) throw Error(image.path + ": cannot move the image there (" + ec.message() + ")");
+        if (ec) throw Error(shown(image.path) + ": cannot move the image there (" + ec.message() + ")");
     }
 }
 

@@ -167,11 +167,14 @@ TEST_F(GnuplotRun, MissingGnuplotIsAClearError) {
     const std::string saved = old ? old : "";
     ::setenv("PATH", path("empty-bin").c_str(), 1);  // the runner lets execvp search PATH
     EXPECT_FALSE(io::gnuplot_available());
+    const std::string folder = path("out\nput");  // the message stays one line
+    fs::create_directories(folder);
     try {
-        io::run_gnuplot({dir_.string(), "x.gp", "plot x\n", {}, "x.log", {io::plot_target(path("x.png"))}});
+        io::run_gnuplot({folder, "x.gp", "plot x\n", {}, "x.log", {io::plot_target(folder + "/x.png")}});
         ADD_FAILURE() << "no error";
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("gnuplot not found"), std::string::npos) << e.what();
+        EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
     }
     ::setenv("PATH", saved.c_str(), 1);
 }
