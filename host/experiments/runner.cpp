@@ -7,6 +7,7 @@
 #include <set>
 
 #include "study.hpp"
+#include "trn/build_info.hpp"
 #include "trn/error.hpp"
 #include "trn/parse_number.hpp"
 #include "trn/experiments/experiment.hpp"
@@ -59,20 +60,8 @@ Json read_json(const std::string& path) {
 // A job file is either complete or absent (a run killed while writing leaves the old state).
 void write_json(const std::string& path, const Json& j) { io::write_file_atomic(path, j.dump(1) + "\n"); }
 
-std::string git_commit() {
-#ifdef TRN_SOURCE_DIR
-    const std::string cmd = std::string("git -C '") + TRN_SOURCE_DIR + "' rev-parse HEAD 2>/dev/null";
-    if (FILE* p = popen(cmd.c_str(), "r")) {
-        char buf[128] = {};
-        const bool ok = std::fgets(buf, sizeof buf, p) != nullptr;
-        pclose(p);
-        std::string s = ok ? buf : "";
-        while (!s.empty() && (s.back() == '\n' || s.back() == '\r')) s.pop_back();
-        if (s.size() == 40) return s;
-    }
-#endif
-    return "unknown";
-}
+// The commit the library was built from (generated at build time; no git process at run time).
+std::string git_commit() { return std::string(build_info().git_commit); }
 
 void progress_bar(std::size_t done, std::size_t total, const std::string& what) {
     const int width = 30, filled = total ? static_cast<int>(width * done / total) : width;
@@ -172,7 +161,8 @@ std::size_t run_experiment(const ExperimentOptions& o) {
         markdown = "**PARTIAL RUN: " + std::to_string(outputs.size()) + " of " + std::to_string(jobs.size()) +
                    " jobs finished; cells are means over the finished jobs only.**\n\n" + markdown;
     io::write_file_atomic(out + "/results.md", markdown);
-    Json prov{{"study", o.study}, {"seed", o.seed}, {"git_commit", git_commit()}, {"backend", o.backend},
+    Json prov{{"study", o.study}, {"seed", o.seed}, {"git_commit", git_commit()}, {"trnkit_version", std::string(build_info().version)},
+              {"backend", o.backend},
               {"backend_devices", devices}, {"jobs", jobs.size()}, {"jobs_merged", outputs.size()}, {"job_wall_s_total", wall_s}, {"config", config}};
     write_json(out + "/provenance.json", prov);
     std::cout << markdown << "\ntables, plots and provenance.json in " << out << " (" << jobs.size() << " jobs, " << wall_s

@@ -275,7 +275,7 @@ public:
         t.write(mc.out, "table_3_12");
         if (mc.plots)
             line_plot(mc.out + "/fig_3_7.png", "Fig 3.7: mean localization error vs map year (flight imagery 2008)", "map year",
-                      "mean error (m)", cols, titles, "set xtics 2\n");
+                      "mean error (m)", cols, titles, {.x_tic_step = 2, .vertical_lines = {}});
         return t.markdown();
     }
 };

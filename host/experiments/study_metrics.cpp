@@ -163,7 +163,7 @@ public:
                     }
                     line_plot(mc.out + "/fig_3_4_" + map + ".png", "Fig 3.4 (" + map + "): similarity of 500 hypotheses, sorted by distance to truth",
                               "hypothesis (0 = nearest the truth)", "similarity", cols, {"NCC", "CC", "SSD"},
-                              "set arrow from 4.5, graph 0 to 4.5, graph 1 nohead dt 2\n");
+                              {.x_tic_step = 0, .vertical_lines = {4.5}});
                 }
         }
         return md;

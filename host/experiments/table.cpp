@@ -5,9 +5,11 @@
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
+#include <sstream>
 
 #include "trn/error.hpp"
 #include "trn/io/atomic_file.hpp"
+#include "trn/io/gnuplot.hpp"
 
 namespace trn::experiments {
 
@@ -56,33 +58,33 @@ void Table::write(const std::string& folder, const std::string& stem) const {
 }
 
 void line_plot(const std::string& png, const std::string& title, const std::string& xlabel, const std::string& ylabel,
-               const std::vector<std::vector<double>>& data, const std::vector<std::string>& titles, const std::string& extra) {
-    if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) {
+               const std::vector<std::vector<double>>& data, const std::vector<std::string>& titles, const LinePlotMarks& marks) {
+    if (!io::gnuplot_available()) {
         std::cerr << "experiment: gnuplot not found, skipping " << png << "\n";
         return;
     }
-    const std::string tsv = png + ".tsv", gp = png + ".gp";
-    {
-        std::ofstream out(tsv);
-        const std::size_t n = data.empty() ? 0 : data[0].size();
-        for (std::size_t r = 0; r < n; ++r) {
-            for (std::size_t c = 0; c < data.size(); ++c) out << (c ? "\t" : "") << (r < data[c].size() ? data[c][r] : NAN);
-            out << "\n";
-        }
-        if (!out) throw Error(tsv + ": write failed");
+    const io::PlotTarget target = io::plot_target(png);
+    const std::string tsv = target.name + ".tsv";
+    std::ostringstream table;
+    const std::size_t n = data.empty() ? 0 : data[0].size();
+    for (std::size_t r = 0; r < n; ++r) {
+        for (std::size_t c = 0; c < data.size(); ++c) table << (c ? "\t" : "") << (r < data[c].size() ? data[c][r] : NAN);
+        table << "\n";
     }
-    {
-        std::ofstream out(gp);
-        out << "set terminal pngcairo size 1000,600 font 'sans,11'\nset output '" << png << "'\nset title '" << title
-            << "'\nset xlabel '" << xlabel << "'\nset ylabel '" << ylabel << "'\nset grid\nset key outside right\n" << extra << "plot ";
-        for (std::size_t c = 1; c < data.size(); ++c)
-            out << (c > 1 ? ", " : "") << "'" << tsv << "' using 1:" << c + 1 << " with lines lw 2 title '"
-                << (c - 1 < titles.size() ? titles[c - 1] : "") << "'";
-        out << "\n";
-        if (!out) throw Error(gp + ": write failed");
-    }
-    const std::string cmd = "gnuplot '" + gp + "' > '" + png + ".log' 2>&1";
-    if (std::system(cmd.c_str()) != 0) throw Error("experiment: gnuplot failed on " + gp + " (see " + png + ".log)");
+    // Every text (titles, labels, column titles) enters the script only as a gnuplot_string.
+    using io::gnuplot_string;
+    std::ostringstream gp;
+    gp << io::gnuplot_png_terminal(1000, 600, "sans,11") << "set output " << gnuplot_string(target.name) << "\nset title "
+       << gnuplot_string(title) << "\nset xlabel " << gnuplot_string(xlabel) << "\nset ylabel " << gnuplot_string(ylabel)
+       << "\nset grid\nset key outside right\n";
+    if (marks.x_tic_step > 0) gp << "set xtics " << marks.x_tic_step << "\n";
+    for (double x : marks.vertical_lines) gp << "set arrow from " << x << ", graph 0 to " << x << ", graph 1 nohead dt 2\n";
+    gp << "plot ";
+    for (std::size_t c = 1; c < data.size(); ++c)
+        gp << (c > 1 ? ", " : "") << gnuplot_string(tsv) << " using 1:" << c + 1 << " with lines lw 2 title "
+           << gnuplot_string(c - 1 < titles.size() ? titles[c - 1] : "");
+    gp << "\n";
+    io::run_gnuplot({target.folder, target.name + ".gp", gp.str(), {{tsv, table.str()}}, target.name + ".log", {target}});
 }
 
 }  // namespace trn::experiments

@@ -5,11 +5,13 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <sstream>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "trn/error.hpp"
 #include "trn/io/atomic_file.hpp"
+#include "trn/io/gnuplot.hpp"
 
 namespace trn::filter {
 namespace {
@@ -24,20 +26,6 @@ std::ofstream open_out(const std::string& path) {
 void close_out(std::ofstream& out, const std::string& path) {
     out.close();
     if (!out) throw Error(path + ": write failed");
-}
-
-// Gnuplot string literal (single quotes; a single quote is doubled).
-std::string quoted(const std::string& s) {
-    std::string q = "'";
-    for (char c : s) q += c == '\'' ? std::string("''") : std::string(1, c);
-    return q + "'";
-}
-
-// Shell word in single quotes.
-std::string shell_quoted(const std::string& s) {
-    std::string q = "'";
-    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return q + "'";
 }
 
 }  // namespace
@@ -107,71 +95,59 @@ std::string gp_number(double v) {
 
 PlotFiles plot_run(const std::string& folder, const std::vector<LocalizationRow>& rows, const LocalizationSummary& s, GrayView map,
                    double mpp, const std::string& title) {
-    if (std::system("command -v gnuplot >/dev/null 2>&1") != 0)
-        throw Error("plot: gnuplot not found on PATH (install gnuplot-nox); the CSV and JSON were written");
+    // gnuplot runs in `folder` and the script names only these fixed files; the title (from a
+    // flight.json or an option) enters only as a gnuplot_string.
+    const std::string raw = "map_plot.gray", data = "plot_data.tsv";
+    const io::PlotTarget trajectory{folder, "trajectory.png", folder + "/trajectory.png"};
+    const io::PlotTarget error{folder, "error.png", folder + "/error.png"};
+    using io::gnuplot_string;
     // The map as raw 8-bit pixels, at most 1000 px wide, in metres on the axes.
     const double factor = std::max(1.0, std::max(map.width, map.height) / 1000.0);
     const int w = std::max(1, static_cast<int>(map.width / factor)), h = std::max(1, static_cast<int>(map.height / factor));
-    std::vector<std::uint8_t> small(std::size_t(w) * h);
+    std::string small(std::size_t(w) * h, '\0');
     const cv::Mat src(map.height, map.width, CV_8UC1, const_cast<std::uint8_t*>(map.data), std::size_t(map.stride));
     cv::Mat dst(h, w, CV_8UC1, small.data());
     cv::resize(src, dst, dst.size(), 0, 0, cv::INTER_AREA);
-    const std::string raw = folder + "/map_plot.gray", data = folder + "/plot_data.tsv";
-    {
-        std::ofstream out(raw, std::ios::binary);
-        out.write(reinterpret_cast<const char*>(small.data()), static_cast<std::streamsize>(small.size()));
-        if (!out) throw Error(raw + ": write failed");
-    }
-    {
-        std::ofstream out = open_out(data);
-        for (const LocalizationRow& r : rows)
-            out << r.distance_m / 1000 << '\t' << r.truth_x * mpp << '\t' << r.truth_y * mpp << '\t' << r.odometry_x * mpp << '\t'
-                << r.odometry_y * mpp << '\t' << r.estimate_x * mpp << '\t' << r.estimate_y * mpp << '\t' << r.error_m << '\t'
-                << r.odometry_error_m << '\n';
-        close_out(out, data);
-    }
-    PlotFiles files{folder + "/trajectory.png", folder + "/error.png"};
-    const std::string script_path = folder + "/plot.gp";
-    {
-        std::ofstream gp = open_out(script_path);
-        const double px_m = factor * mpp;
-        // Trajectories: zoom on the flown area plus a margin.
-        double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
-        for (const LocalizationRow& r : rows)
-            for (auto [x, y] : {std::pair{r.truth_x, r.truth_y}, std::pair{r.odometry_x, r.odometry_y}, std::pair{r.estimate_x, r.estimate_y}})
-                if (std::isfinite(x) && std::isfinite(y)) x0 = std::min(x0, x * mpp), x1 = std::max(x1, x * mpp), y0 = std::min(y0, y * mpp), y1 = std::max(y1, y * mpp);
-        const double margin = 50;
-        gp << "set terminal pngcairo size 1100,1000 font 'sans,11'\n"
-           << "set output " << quoted(files.trajectory_png) << "\n"
-           << "set title " << quoted(title + ": trajectories on the map") << "\n"
-           << "set xlabel 'east (m)'\nset ylabel 'south (m)'\nset size ratio -1\nunset colorbox\n"
-           << "set palette gray\nset key opaque box\n"
-           << "set xrange [" << x0 - margin << ":" << x1 + margin << "]\n"
-           << "set yrange [" << y1 + margin << ":" << y0 - margin << "]\n"
-           << "plot " << quoted(raw) << " binary array=(" << w << "," << h << ") format='%uchar' dx=" << px_m << " dy=" << px_m
-           << " origin=(0,0) flipy with image notitle, \\\n"
-           << "  " << quoted(data) << " using 2:3 with lines lw 3 lc rgb '#1a9850' title 'ground truth', \\\n"
-           << "  '' using 4:5 with lines lw 2 lc rgb '#d73027' title 'visual odometry', \\\n"
-           << "  '' using 6:7 with lines lw 2 lc rgb '#4575b4' title 'DPC-PFL estimate'\n";
-        gp << "set output " << quoted(files.error_png) << "\n"
-           << "set terminal pngcairo size 1100,600 font 'sans,11'\n"
-           << "reset\nset title " << quoted(title + ": position error over distance flown") << "\n"
-           << "set xlabel 'distance flown (km)'\nset ylabel 'error (m)'\nset grid\nset key left top\n"
-           // The trend lines are the summary's own least-squares fits (gnuplot's `fit` would
-           // compute them a second time and leave a fit.log in the working directory).
-           << "ao = " << gp_number(s.odometry_error_slope_m_per_km) << "\nbo = " << gp_number(s.odometry_error_intercept_m) << "\n"
-           << "af = " << gp_number(s.filter_error_slope_m_per_km) << "\nbf = " << gp_number(s.filter_error_intercept_m) << "\n"
-           << "fo(x) = ao*x + bo\nff(x) = af*x + bf\n"
-           << "plot " << quoted(data) << " using 1:9 with lines lw 2 lc rgb '#d73027' title 'visual odometry', \\\n"
-           << "  '' using 1:8 with lines lw 2 lc rgb '#4575b4' title 'DPC-PFL', \\\n"
-           << "  fo(x) with lines dt 2 lw 2 lc rgb '#d73027' title sprintf('odometry trend %.1f m/km', ao), \\\n"
-           << "  ff(x) with lines dt 2 lw 2 lc rgb '#4575b4' title sprintf('filter trend %.1f m/km', af)\n";
-        close_out(gp, script_path);
-    }
-    const std::string cmd = "gnuplot " + shell_quoted(script_path) + " > " + shell_quoted(folder + "/gnuplot.log") + " 2>&1";
-    if (std::system(cmd.c_str()) != 0)
-        throw Error("plot: gnuplot failed on " + script_path + " (see " + folder + "/gnuplot.log)");
-    return files;
+    std::ostringstream table;
+    table.precision(10);
+    for (const LocalizationRow& r : rows)
+        table << r.distance_m / 1000 << '\t' << r.truth_x * mpp << '\t' << r.truth_y * mpp << '\t' << r.odometry_x * mpp << '\t'
+              << r.odometry_y * mpp << '\t' << r.estimate_x * mpp << '\t' << r.estimate_y * mpp << '\t' << r.error_m << '\t'
+              << r.odometry_error_m << '\n';
+
+    std::ostringstream gp;
+    const double px_m = factor * mpp;
+    // Trajectories: zoom on the flown area plus a margin.
+    double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
+    for (const LocalizationRow& r : rows)
+        for (auto [x, y] : {std::pair{r.truth_x, r.truth_y}, std::pair{r.odometry_x, r.odometry_y}, std::pair{r.estimate_x, r.estimate_y}})
+            if (std::isfinite(x) && std::isfinite(y)) x0 = std::min(x0, x * mpp), x1 = std::max(x1, x * mpp), y0 = std::min(y0, y * mpp), y1 = std::max(y1, y * mpp);
+    const double margin = 50;
+    gp << io::gnuplot_png_terminal(1100, 1000, "sans,11") << "set output " << gnuplot_string(trajectory.name) << "\n"
+       << "set title " << gnuplot_string(title + ": trajectories on the map") << "\n"
+       << "set xlabel 'east (m)'\nset ylabel 'south (m)'\nset size ratio -1\nunset colorbox\n"
+       << "set palette gray\nset key opaque box\n"
+       << "set xrange [" << x0 - margin << ":" << x1 + margin << "]\n"
+       << "set yrange [" << y1 + margin << ":" << y0 - margin << "]\n"
+       << "plot " << gnuplot_string(raw) << " binary array=(" << w << "," << h << ") format='%uchar' dx=" << px_m << " dy=" << px_m
+       << " origin=(0,0) flipy with image notitle, \\\n"
+       << "  " << gnuplot_string(data) << " using 2:3 with lines lw 3 lc rgb '#1a9850' title 'ground truth', \\\n"
+       << "  '' using 4:5 with lines lw 2 lc rgb '#d73027' title 'visual odometry', \\\n"
+       << "  '' using 6:7 with lines lw 2 lc rgb '#4575b4' title 'DPC-PFL estimate'\n";
+    gp << io::gnuplot_png_terminal(1100, 600, "sans,11") << "set output " << gnuplot_string(error.name) << "\n"
+       << "reset\nset title " << gnuplot_string(title + ": position error over distance flown") << "\n"
+       << "set xlabel 'distance flown (km)'\nset ylabel 'error (m)'\nset grid\nset key left top\n"
+       // The trend lines are the summary's own least-squares fits (gnuplot's `fit` would
+       // compute them a second time and leave a fit.log in the working directory).
+       << "ao = " << gp_number(s.odometry_error_slope_m_per_km) << "\nbo = " << gp_number(s.odometry_error_intercept_m) << "\n"
+       << "af = " << gp_number(s.filter_error_slope_m_per_km) << "\nbf = " << gp_number(s.filter_error_intercept_m) << "\n"
+       << "fo(x) = ao*x + bo\nff(x) = af*x + bf\n"
+       << "plot " << gnuplot_string(data) << " using 1:9 with lines lw 2 lc rgb '#d73027' title 'visual odometry', \\\n"
+       << "  '' using 1:8 with lines lw 2 lc rgb '#4575b4' title 'DPC-PFL', \\\n"
+       << "  fo(x) with lines dt 2 lw 2 lc rgb '#d73027' title sprintf('odometry trend %.1f m/km', ao), \\\n"
+       << "  ff(x) with lines dt 2 lw 2 lc rgb '#4575b4' title sprintf('filter trend %.1f m/km', af)\n";
+    io::run_gnuplot({folder, "plot.gp", gp.str(), {{raw, small}, {data, table.str()}}, "gnuplot.log", {trajectory, error}});
+    return {trajectory.path, error.path};
 }
 
 }  // namespace trn::filter

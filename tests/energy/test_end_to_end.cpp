@@ -14,7 +14,7 @@
 
 #include "synthetic_run.hpp"
 #include "trn/energy/parsers.hpp"
-#include "trn/energy/plots.hpp"
+#include "trn/io/gnuplot.hpp"
 
 namespace trn::energy {
 namespace {
@@ -51,7 +51,7 @@ TEST(EndToEnd, FramesIntegrateCompare) {
     const fs::path dir = fs::temp_directory_path() / ("trn_energy_e2e_" + std::to_string(::getpid()));
     fs::remove_all(dir);
     fs::create_directories(dir);
-    const bool plots = !find_gnuplot().empty();
+    const bool plots = io::gnuplot_available();
     const MeasuredRun a = measured_run(dir, "a", 2.0), b = measured_run(dir, "b", 3.0);
     for (const auto& [r, label] : {std::pair{a, "cpu-A"}, std::pair{b, "cpu-B"}}) {
         std::string cmd = "energy integrate " + r.log.string() + " --markers " + r.markers.string() + " --align auto --platform " + label +

@@ -1,8 +1,10 @@
 #pragma once
-// Figures drawn by gnuplot (run as a subprocess; scripts and data files are kept next to each
-// PNG so a figure can be restyled by hand): the power trace with frames shaded, per-platform
-// energy histograms with the mean marked (the dissertation's Fig. 3.3), and box plots.
-// A missing gnuplot is a trn::Error saying so; nothing else depends on it.
+// Figures drawn by gnuplot through trn::io::run_gnuplot (no shell; labels such as platform names
+// enter the script only as trn::io::gnuplot_string): the power trace with frames shaded,
+// per-platform energy histograms with the mean marked (the dissertation's Fig. 3.3), and box plots.
+// The script, data files and gnuplot's log are kept next to each PNG, named after it
+// (trn::io::plot_target), so a figure can be restyled by hand. A missing gnuplot is a trn::Error
+// saying so (trn::io::gnuplot_available() tells beforehand); nothing else depends on it.
 #include <string>
 #include <vector>
 
@@ -10,9 +12,6 @@
 #include "trn/energy/trace.hpp"
 
 namespace trn::energy {
-
-// Full path of gnuplot on PATH, or "" when there is none.
-std::string find_gnuplot();
 
 void plot_power_trace(const PowerTrace& trace, const RunReport& run, const std::string& png);
 
