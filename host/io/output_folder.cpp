@@ -1,6 +1,7 @@
 #include "trn/io/output_folder.hpp"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -47,6 +48,24 @@ bool exchange(const std::string& a, const std::string& b) {
     if (errno != EINVAL && errno != ENOSYS && errno != ENOTSUP) throw Error(b + ": cannot replace (" + std::strerror(errno) + ")");
 #endif
     return false;
+}
+
+// Staging folders of runs that were killed ("<target>.partial-<pid>" whose process is gone): each
+// can hold a whole flight of frames, so the next run for the same target removes them.
+void remove_dead_stagings(const std::string& target) {
+    const fs::path t(target);
+    const std::string prefix = t.filename().string() + ".partial-";
+    std::error_code ec;
+    std::vector<fs::path> dead;
+    for (fs::directory_iterator it(t.parent_path(), ec), end; !ec && it != end; it.increment(ec)) {
+        const std::string name = it->path().filename().string();
+        if (name.rfind(prefix, 0) != 0) continue;
+        const std::string digits = name.substr(prefix.size());
+        if (digits.empty() || digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos) continue;
+        const pid_t pid = static_cast<pid_t>(std::stol(digits));
+        if (pid > 0 && ::kill(pid, 0) != 0 && errno == ESRCH) dead.push_back(it->path());
+    }
+    for (const fs::path& p : dead) remove_tree(p.string());
 }
 
 void rename_or_throw(const std::string& from, const std::string& to, const std::string& what) {
@@ -101,6 +120,7 @@ StagedFolder::StagedFolder(const std::string& target, std::string command, bool 
     state_ = check_output_folder(target, command_, force, option);
     target_ = without_trailing_separator(target);
     staging_ = target_ + ".partial-" + std::to_string(::getpid());
+    remove_dead_stagings(target_);
     remove_tree(staging_);  // only a dead run of this process id can have left one
     std::error_code ec;
     fs::create_directories(staging_, ec);

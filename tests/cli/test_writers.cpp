@@ -162,6 +162,19 @@ TEST_F(Writers, SimulateKilledMidRunLeavesTheEarlierDatasetAndNoFolderThatReadsA
     }
 }
 
+TEST_F(Writers, SimulateRemovesTheStagingFolderOfAKilledRun) {
+    const pid_t dead = ::fork();  // a process id that is surely not running any more
+    if (dead == 0) ::_exit(0);
+    ::waitpid(dead, nullptr, 0);
+    const std::string left = path("flight.partial-" + std::to_string(dead));
+    fs::create_directories(left);
+    std::ofstream(left + "/frame_000000.png") << "half a frame";
+    fs::create_directories(path("flight.partial-notapid"));  // not a staging name: left alone
+    simulate("flight", 2);
+    EXPECT_FALSE(fs::exists(left));
+    EXPECT_TRUE(fs::exists(path("flight.partial-notapid")));
+}
+
 TEST_F(Writers, ReadRefusesAMetadataFileWithFewerRowsThanFlightJsonDeclares) {
     simulate("flight", 5);
     std::string csv = slurp(path("flight/metadata.csv"));

@@ -31,7 +31,8 @@ void open_output_folder(const std::string& folder, const std::string& command, b
 // survives into the new one.
 class StagedFolder {
 public:
-    // Checks the target (check_output_folder) and creates an empty staging folder.
+    // Checks the target (check_output_folder), removes staging folders of killed runs for the same
+    // target, and creates an empty staging folder.
     StagedFolder(const std::string& target, std::string command, bool force, const std::string& option = "--out");
     ~StagedFolder();  // without commit() the staging folder and everything in it are removed
     StagedFolder(const StagedFolder&) = delete;
