@@ -47,12 +47,15 @@ std::string csv_cell(const std::string& c) {
 
 void Table::write(const std::string& folder, const std::string& stem) const {
     std::string csv;
-    for (std::size_t i = 0; i < header.size(); ++i) csv += (i ? "," : "") + csv_cell(header[i]);
-    csv += "\n";
-    for (const auto& row : rows) {
-        for (std::size_t i = 0; i < row.size(); ++i) csv += (i ? "," : "") + csv_cell(row[i]);
-        csv += "\n";
-    }
+    auto add_row = [&csv](const std::vector<std::string>& cells) {
+        for (std::size_t i = 0; i < cells.size(); ++i) {
+            if (i) csv += ',';
+            csv += csv_cell(cells[i]);
+        }
+        csv += '\n';
+    };
+    add_row(header);
+    for (const auto& row : rows) add_row(row);
     io::write_file_atomic(folder + "/" + stem + ".md", markdown());
     io::write_file_atomic(folder + "/" + stem + ".csv", csv);
 }

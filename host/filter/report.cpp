@@ -14,22 +14,6 @@
 #include "trn/io/gnuplot.hpp"
 
 namespace trn::filter {
-namespace {
-
-std::ofstream open_out(const std::string& path) {
-    std::ofstream out(path);
-    if (!out) throw Error(path + ": cannot open for writing");
-    out.precision(10);
-    return out;
-}
-
-void close_out(std::ofstream& out, const std::string& path) {
-    out.close();
-    if (!out) throw Error(path + ": write failed");
-}
-
-}  // namespace
-
 void write_rows_csv(const std::string& path, const std::vector<LocalizationRow>& rows) {
     io::AtomicFile file(path);
     std::ostream& out = file.stream();
