@@ -42,6 +42,7 @@ void add_energy_command(CLI::App& app) {
         const auto e = energy::integrate_interval(tr, tr.first_interval_start.value_or(tr.t.front()), tr.t.back());
         std::printf("  whole log: %.6g J (+- %.3g J)\n", e.energy_j, e.error_j);
         for (const auto& n : tr.notes) std::printf("  note: %s\n", n.c_str());
+        for (const auto& w : tr.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
         for (const auto& m : tr.markers) std::printf("  marker: %.6f %s\n", m.t, m.label.c_str());
     });
     auto* span = energy->add_subcommand("integrate-span", "Energy of [--start, --end] (seconds on the log's clock)");

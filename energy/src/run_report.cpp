@@ -78,7 +78,8 @@ RunReport integrate_run(const PowerTrace& trace, const MarkerFile& markers, cons
     const RunEnergy run = integrate_frames(trace, marker_intervals(markers, mapping), q.integration);
     r.shift = shift_sensitivity(trace, markers, mapping, q.integration);
     r.idle_w = run.idle_w, r.idle_first_w = run.idle_first_w, r.idle_last_w = run.idle_last_w, r.idle_segments = run.idle_segments;
-    r.warnings = run.warnings;
+    r.warnings = trace.warnings;  // implausible readings dropped by the parser
+    r.warnings.insert(r.warnings.end(), run.warnings.begin(), run.warnings.end());
     std::map<int, const FrameMarker*> by_id;
     for (const auto& m : markers.rows)
         if (m.kind == "frame") by_id[m.id] = &m;
