@@ -52,6 +52,7 @@ void add_energy_command(CLI::App& app) {
     span->add_flag("--hold", a->hold, "Zero-order hold instead of the trapezoid rule");
     span->callback([a] {
         const auto tr = energy::read_power_log(a->log, a->format, energy::parse_option_list(a->opts));
+        for (const auto& w : tr.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
         const auto e = energy::integrate_interval(tr, a->start, a->end, a->hold ? energy::Rule::Hold : energy::Rule::Trapezoid);
         if (!e.covered) throw trn::Error(a->log + ": the span [" + std::to_string(a->start) + ", " + std::to_string(a->end) + "] s is not covered by the log");
         std::printf("%.9g J +- %.3g J (%zu samples inside)\n", e.energy_j, e.error_j, e.samples);

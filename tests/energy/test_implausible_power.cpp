@@ -3,11 +3,14 @@
 // whose summed rails differ from the first line's is refused.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
+#include "run_trnkit.hpp"
 #include "synthetic_run.hpp"
 #include "trn/energy/parsers.hpp"
 #include "trn/energy/run_report.hpp"
@@ -57,6 +60,29 @@ TEST(ImplausiblePower, GlitchIsDroppedWarnedAndKeptOutOfTheIdleBaseline) {
     EXPECT_NEAR(r.idle_w, 2.0, 0.05);  // one -1e6 W sample integrated would pull it hundreds of watts negative
     EXPECT_TRUE(mentions(r.warnings, "implausible")) << "the run report must carry the warning";
     EXPECT_NE(run_report_json(r).find("implausible"), std::string::npos);
+}
+
+// The CLI says so on stderr for every command that reads the log, and the report keeps it.
+TEST(ImplausiblePower, CliWarnsOnStderr) {
+    namespace fs = std::filesystem;
+    const fs::path dir = fs::temp_directory_path() / ("trn_implausible_" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    const auto tl = test::make_timeline(10, 0.05, 0.05);
+    const double ref = tl.markers.rows.front().real_start_ns * 1e-9;
+    std::size_t line = 0;
+    const std::string log = (dir / "p.log").string(), markers = (dir / "m.csv").string(), json = (dir / "r.json").string();
+    std::ofstream(log) << with_power(format_trnkit_power(test::sample_trace(tl.markers, test::TraceClock{0, 0, ref}, ref - 0.1, ref + 2.5, 1e-3, 2.0, 3.0, 0, true)),
+                                     150, "-1e6", &line);
+    std::ofstream(markers) << format_markers(tl.markers);
+    const std::string expect = "warning: " + log + ": dropped 1 implausible power reading(s)";
+    for (const std::string& args : {"energy integrate " + log + " --markers " + markers + " --json " + json, "energy inspect " + log,
+                                    "energy integrate-span " + log + " --start " + std::to_string(ref) + " --end " + std::to_string(ref + 1)}) {
+        const auto r = test::run_trnkit(args);
+        EXPECT_EQ(r.code, 0) << args << "\n" << r.output;
+        EXPECT_NE(r.output.find(expect), std::string::npos) << args << "\n" << r.output;
+    }
+    EXPECT_TRUE(mentions(read_run_report(json).warnings, "line " + std::to_string(line) + ": -1e+06 W"));
+    fs::remove_all(dir);
 }
 
 TEST(ImplausiblePower, CeilingAndNoiseFloor) {
