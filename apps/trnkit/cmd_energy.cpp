@@ -43,6 +43,7 @@ void add_energy_command(CLI::App& app) {
         const auto e = energy::integrate_interval(tr, tr.first_interval_start.value_or(tr.t.front()), tr.t.back());
         std::printf("  whole log: %.6g J (+- %.3g J)\n", e.energy_j, e.error_j);
         for (const auto& n : tr.notes) std::printf("  note: %s\n", n.c_str());
+        for (const auto& w : tr.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
         for (const auto& m : tr.markers) std::printf("  marker: %.6f %s\n", m.t, m.label.c_str());
     });
     auto* span = energy->add_subcommand("integrate-span", "Energy of [--start, --end] (seconds on the log's clock)");
@@ -53,6 +54,7 @@ void add_energy_command(CLI::App& app) {
     span->callback([a] {
         if (!(a->end > a->start)) throw Error("--end " + std::to_string(a->end) + " must be after --start " + std::to_string(a->start));
         const auto tr = energy::read_power_log(a->log, a->format, energy::parse_option_list(a->opts));
+        for (const auto& w : tr.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
         const auto e = energy::integrate_interval(tr, a->start, a->end, a->hold ? energy::Rule::Hold : energy::Rule::Trapezoid);
         if (!e.covered) throw trn::Error(a->log + ": the span [" + std::to_string(a->start) + ", " + std::to_string(a->end) + "] s is not covered by the log");
         std::printf("%.9g J +- %.3g J (%zu samples inside)\n", e.energy_j, e.error_j, e.samples);

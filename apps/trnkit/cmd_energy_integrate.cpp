@@ -19,7 +19,7 @@ void add_energy_integrate_command(CLI::App* energy) {
         std::string log, format = "auto", markers, align, platform, json, csv, plot, clock = "real";
         std::vector<std::string> opts;
         double offset = 0, search = 0;
-        bool hold = false;
+        bool hold = false, insist = false;
         std::size_t min_samples = 3;
     };
     auto a = std::make_shared<Args>();
@@ -32,6 +32,7 @@ void add_energy_integrate_command(CLI::App* energy) {
                        ->check(real_in(-1e12, 1e12));
     c->add_option("--align", a->align, "auto: estimate offset and drift from the busy/idle pattern")->check(CLI::IsMember({"auto"}));
     c->add_option("--search", a->search, "With --align auto: search OFFSET +- this many seconds (default: everywhere)")->check(real_in(0, 1e12));
+    c->add_flag("--insist", a->insist, "With --align auto: accept an ambiguous estimate (kept as a warning in the report) instead of refusing");
     c->add_option("--clock", a->clock, "Marker clock: real (CLOCK_REALTIME) or mono (CLOCK_MONOTONIC)")->capture_default_str()->check(CLI::IsMember({"real", "mono"}));
     c->add_flag("--hold", a->hold, "Zero-order hold instead of the trapezoid rule");
     c->add_option("--min-samples", a->min_samples, "Frames with fewer samples are flagged")->capture_default_str()->transform(whole_in(0, 1000000));
@@ -43,7 +44,7 @@ void add_energy_integrate_command(CLI::App* energy) {
         energy::IntegrateRequest q;
         q.platform = a->platform;
         q.realtime = a->clock == "real";
-        q.offset_s = a->offset, q.search_s = a->search;
+        q.offset_s = a->offset, q.search_s = a->search, q.insist = a->insist;
         q.align = !a->align.empty() ? energy::AlignMode::Auto : offset->count() ? energy::AlignMode::Offset : energy::AlignMode::SameClock;
         q.integration.rule = a->hold ? energy::Rule::Hold : energy::Rule::Trapezoid;
         q.integration.min_samples = a->min_samples;
@@ -66,6 +67,7 @@ void add_energy_integrate_command(CLI::App* energy) {
                      r.platform.c_str(), r.frames.size(), usable, usable ? 1e3 * sum / usable : 0.0, r.idle_w, r.align_mode.c_str(),
                      r.alignment.mapping.offset_s, r.alignment.mapping.drift, r.alignment.residual_s, r.shift.dt_s, 100 * r.shift.relative_minus,
                      100 * r.shift.relative_plus);
+        if (r.align_mode == "auto") std::fprintf(stderr, "  alignment confidence: %s\n", r.alignment.confidence.c_str());
         for (const auto& w : r.warnings) std::fprintf(stderr, "  warning: %s\n", w.c_str());
         if (!a->plot.empty()) {
             const auto trace = energy::read_power_log(a->log, a->format, opts);

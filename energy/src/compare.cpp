@@ -31,10 +31,27 @@ json summary_json(const Summary& s) {
             {"iqr", num(s.iqr())}, {"ci95_low", num(s.ci_low)}, {"ci95_high", num(s.ci_high)}};
 }
 
+// The same report twice (under any name), or two reports of one measurement (same log and
+// markers), would pool its frames twice and double n: refused, naming both arguments.
+void refuse_repeats(const std::vector<RunInput>& inputs) {
+    for (std::size_t i = 0; i < inputs.size(); ++i)
+        for (std::size_t j = i + 1; j < inputs.size(); ++j) {
+            const RunInput &a = inputs[i], &b = inputs[j];
+            if (!a.sha256.empty() && a.sha256 == b.sha256)
+                throw Error("compare: " + a.path + " and " + b.path + " are the same run report (sha256 " + a.sha256.substr(0, 16) +
+                            "...): its frames would be counted twice");
+            const RunReport &ra = a.report, &rb = b.report;
+            if (!ra.log_sha256.empty() && ra.log_sha256 == rb.log_sha256 && ra.markers_sha256 == rb.markers_sha256)
+                throw Error("compare: " + a.path + " and " + b.path + " integrate the same measurement (log sha256 " + ra.log_sha256.substr(0, 16) +
+                            "..., markers sha256 " + ra.markers_sha256.substr(0, 16) + "...): its frames would be counted twice");
+        }
+}
+
 }  // namespace
 
 Comparison compare_runs(std::vector<RunInput> inputs, const CompareOptions& o) {
     if (inputs.empty()) throw Error("compare: no run reports given");
+    refuse_repeats(inputs);
     Comparison c;
     c.options = o;
     std::map<std::string, std::size_t> index;

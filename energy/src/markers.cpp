@@ -2,7 +2,9 @@
 
 #include <charconv>
 #include <fstream>
+#include <map>
 #include <sstream>
+#include <utility>
 
 #include "text_input.hpp"
 
@@ -28,6 +30,10 @@ MarkerFile parse_markers(std::string_view input, const std::string& name) {
         m.meta[std::string(tok.substr(0, eq))] = std::string(tok.substr(eq + 1));
     }
     if (lines.size() < 2 || text::trim(lines[1].text) != kHeader) text::fail(name, 2, "expected the column header '" + std::string(kHeader) + "'");
+    // A repeated id would pair a frame's energy with another frame's phase times, and
+    // overlapping rows would count the same joules twice: both are refused, naming both lines.
+    std::map<std::pair<std::string, int>, std::size_t> id_line;
+    std::size_t previous_line = 0;
     for (std::size_t i = 2; i < lines.size(); ++i) {
         const auto& l = lines[i];
         if (text::trim(l.text).empty()) continue;
@@ -45,6 +51,16 @@ MarkerFile parse_markers(std::string_view input, const std::string& name) {
         const auto w = text::to_number(f[6]), e = text::to_number(f[7]), rd = text::to_number(f[8]);
         if (!w || !e || !rd) text::fail(name, l.number, "phase times must be numbers");
         r.write_ms = *w, r.exec_ms = *e, r.read_ms = *rd;
+        if (const auto [it, fresh] = id_line.emplace(std::pair{r.kind, r.id}, l.number); !fresh)
+            text::fail(name, l.number, r.kind + " id " + std::to_string(r.id) + " repeats the row at line " + std::to_string(it->second));
+        if (!m.rows.empty()) {
+            const FrameMarker& p = m.rows.back();
+            const char* clock = r.mono_start_ns < p.mono_end_ns ? "CLOCK_MONOTONIC" : r.real_start_ns < p.real_end_ns ? "CLOCK_REALTIME" : nullptr;
+            if (clock)
+                text::fail(name, l.number, r.kind + " " + std::to_string(r.id) + " starts before " + p.kind + " " + std::to_string(p.id) + " (line " +
+                                               std::to_string(previous_line) + ") ends on " + clock + ": rows overlap or are out of time order");
+        }
+        previous_line = l.number;
         m.rows.push_back(r);
     }
     return m;

@@ -39,7 +39,8 @@ PowerTrace parse_tegrastats(std::string_view input, const std::string& name, con
     TraceBuilder b(name, "tegrastats");
     b.trace().resolution_w = 1e-3;
     std::size_t stamped = 0, unstamped = 0, index = 0;
-    std::string rule;
+    std::string rule, sum_rails;
+    std::size_t sum_line = 0;
     for (const auto& l : text::split_lines(input)) {
         const auto s = text::trim(l.text);
         if (s.empty()) continue;
@@ -79,6 +80,16 @@ PowerTrace parse_tegrastats(std::string_view input, const std::string& name, con
         }
         if (rule.empty()) rule = used;
         else if (rule != used) text::fail(name, l.number, "total rule changed from '" + rule + "' to '" + used + "' (rails differ between lines)");
+        // A sum is only comparable between lines that add the same rails: a line missing one
+        // would read as a power drop, so it is refused.
+        if (used.starts_with("sum")) {
+            std::string names;
+            for (const auto& [n, v] : rails) names += (names.empty() ? "" : " ") + n;
+            if (sum_rails.empty()) sum_rails = names, sum_line = l.number;
+            else if (names != sum_rails)
+                text::fail(name, l.number, "summed rails '" + names + "' differ from '" + sum_rails + "' at line " + std::to_string(sum_line) +
+                                               " (a rail missing or added): the sum would not be the same quantity");
+        }
         if (t) ++stamped; else ++unstamped;
         if (stamped && unstamped) text::fail(name, l.number, "some lines have time stamps and some do not");
         b.add(l.number, t ? *t : index * interval, mw * 1e-3);

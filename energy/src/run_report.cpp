@@ -70,6 +70,9 @@ RunReport integrate_run(const PowerTrace& trace, const MarkerFile& markers, cons
             AlignOptions ao;
             ao.realtime = q.realtime, ao.guess_s = q.offset_s, ao.search_s = q.search_s;
             r.alignment = align_auto(trace, markers, ao);
+            if (r.alignment.ambiguous && !q.insist)
+                throw Error(trace.source + ": automatic alignment is ambiguous (" + r.alignment.confidence +
+                            "): narrow the search with --offset/--search, record a sync pattern (trnkit frames --sync-unit-ms), or pass --insist to accept it");
             mapping = r.alignment.mapping;
             break;
         }
@@ -78,7 +81,9 @@ RunReport integrate_run(const PowerTrace& trace, const MarkerFile& markers, cons
     const RunEnergy run = integrate_frames(trace, marker_intervals(markers, mapping), q.integration);
     r.shift = shift_sensitivity(trace, markers, mapping, q.integration);
     r.idle_w = run.idle_w, r.idle_first_w = run.idle_first_w, r.idle_last_w = run.idle_last_w, r.idle_segments = run.idle_segments;
-    r.warnings = run.warnings;
+    r.warnings = trace.warnings;  // implausible readings dropped by the parser
+    if (r.alignment.ambiguous) r.warnings.push_back("AMBIGUOUS automatic alignment accepted with --insist: " + r.alignment.confidence);
+    r.warnings.insert(r.warnings.end(), run.warnings.begin(), run.warnings.end());
     std::map<int, const FrameMarker*> by_id;
     for (const auto& m : markers.rows)
         if (m.kind == "frame") by_id[m.id] = &m;
@@ -120,7 +125,10 @@ std::string run_report_json(const RunReport& r) {
     j["alignment"] = {{"offset_s", finite(a.mapping.offset_s, "offset")}, {"drift", finite(a.mapping.drift, "drift")}, {"ref_s", a.mapping.ref_s},
                       {"residual_s", a.residual_s}, {"contrast_w", a.contrast_w}, {"window_time_s", a.window_time_s},
                       {"window_offset_s", a.window_offset_s}, {"shift_dt_s", r.shift.dt_s}, {"shift_minus_relative", r.shift.relative_minus},
-                      {"shift_plus_relative", r.shift.relative_plus}};
+                      {"shift_plus_relative", r.shift.relative_plus}, {"second_offset_s", a.second_offset_s},
+                      {"second_contrast_w", a.second_contrast_w}, {"candidate_ratio", a.candidate_ratio}, {"has_sync", a.has_sync},
+                      {"sync_contrast_w", a.sync_contrast_w}, {"sync_ratio", a.sync_ratio}, {"ambiguous", a.ambiguous},
+                      {"confidence", a.confidence}};
     j["idle"] = {{"w", r.idle_w}, {"first_w", r.idle_first_w}, {"last_w", r.idle_last_w}, {"segments", r.idle_segments}};
     j["warnings"] = r.warnings;
     json frames = json::array();
@@ -172,6 +180,11 @@ RunReport parse_run_report_json(const std::string& text, const std::string& name
         r.alignment.mapping.offset_s = a.at("offset_s"), r.alignment.mapping.drift = a.at("drift"), r.alignment.mapping.ref_s = a.at("ref_s");
         r.alignment.residual_s = a.at("residual_s"), r.alignment.contrast_w = a.at("contrast_w");
         r.shift.dt_s = a.at("shift_dt_s"), r.shift.relative_minus = a.at("shift_minus_relative"), r.shift.relative_plus = a.at("shift_plus_relative");
+        // Confidence fields came later: reports without them read as "not recorded".
+        r.alignment.second_offset_s = a.value("second_offset_s", 0.0), r.alignment.second_contrast_w = a.value("second_contrast_w", 0.0);
+        r.alignment.candidate_ratio = a.value("candidate_ratio", 0.0), r.alignment.has_sync = a.value("has_sync", false);
+        r.alignment.sync_contrast_w = a.value("sync_contrast_w", 0.0), r.alignment.sync_ratio = a.value("sync_ratio", 0.0);
+        r.alignment.ambiguous = a.value("ambiguous", false), r.alignment.confidence = a.value("confidence", std::string());
         const auto& idle = j.at("idle");
         r.idle_w = idle.at("w"), r.idle_first_w = idle.at("first_w"), r.idle_last_w = idle.at("last_w"), r.idle_segments = idle.at("segments");
         r.warnings = j.at("warnings").get<std::vector<std::string>>();

@@ -1,6 +1,8 @@
 #pragma once
-// Collects samples for a parser: refuses a time that goes backwards (names the line), counts
-// rows dropped for a reason and turns the counts into the trace's notes.
+// Collects samples for a parser: refuses a time that goes backwards (names the line), drops
+// physically implausible readings into the trace's warnings, counts rows dropped for a reason
+// and turns the counts into the trace's notes.
+#include <cstdio>
 #include <map>
 #include <string>
 
@@ -28,6 +30,11 @@ public:
             text::fail(trace_.source, line, "time goes backwards (" + std::to_string(t) + " s after " +
                                                 std::to_string(trace_.t.back()) + " s)");
         }
+        if (!(w >= kMinPlausibleW && w <= kMaxPlausibleW)) {
+            if (implausible_++ == 0) first_implausible_w_ = w;
+            drop(line, kImplausible);
+            return;
+        }
         trace_.t.push_back(t);
         trace_.w.push_back(w);
     }
@@ -38,18 +45,29 @@ public:
     void note(std::string text) { trace_.notes.push_back(std::move(text)); }
 
     PowerTrace finish() {
+        std::string why_few = dropped_.empty() ? "" : "; dropped rows: see the notes";
+        if (implausible_) {
+            char buf[256];
+            std::snprintf(buf, sizeof buf, "dropped %zu implausible power reading(s) outside [%g W, %g W] (first at line %zu: %g W); the trace is interpolated across them",
+                          implausible_, kMinPlausibleW, kMaxPlausibleW, dropped_[kImplausible].second, first_implausible_w_);
+            trace_.warnings.push_back(trace_.source + ": " + buf);
+            why_few = std::string("; ") + buf;
+        }
         for (const auto& [reason, cf] : dropped_)
             trace_.notes.push_back("dropped " + std::to_string(cf.first) + " row(s): " + reason + " (first at line " +
                                    std::to_string(cf.second) + ")");
         if (trace_.t.size() < 2)
-            throw Error(trace_.source + ": fewer than two usable samples (" + std::to_string(trace_.t.size()) +
-                        ") in this " + trace_.format + " log" + (dropped_.empty() ? "" : "; " + trace_.notes.back()));
+            throw Error(trace_.source + ": fewer than two usable samples (" + std::to_string(trace_.t.size()) + ") in this " + trace_.format + " log" +
+                        (implausible_ || dropped_.empty() ? why_few : "; " + trace_.notes.back()));
         return std::move(trace_);
     }
 
 private:
     PowerTrace trace_;
     std::map<std::string, std::pair<std::size_t, std::size_t>> dropped_;
+    static constexpr const char* kImplausible = "power outside the plausible range (see warnings)";
+    std::size_t implausible_ = 0;
+    double first_implausible_w_ = 0;
 };
 
 }  // namespace trn::energy

@@ -16,9 +16,10 @@ struct Timeline {
     double t0 = 1.7e9;  // marker clock (UNIX seconds) of the first row
 };
 
-// lead idle, sync bursts 3u,1u,2u with u gaps, then frames of frame_s (+ a deterministic
-// wobble so frames differ) separated by idle_s.
-inline Timeline make_timeline(int frames, double frame_s, double idle_s, double sync_u = 0.1, double lead_s = 0.5) {
+// lead idle, sync bursts 3u,1u,2u with u gaps (none when sync_u is 0), then frames of frame_s
+// (+ a deterministic wobble of +-`wobble` x frame_s so frames differ; 0: strictly periodic)
+// separated by idle_s.
+inline Timeline make_timeline(int frames, double frame_s, double idle_s, double sync_u = 0.1, double lead_s = 0.5, double wobble = 0.1) {
     Timeline tl;
     double t = tl.t0;
     auto add = [&](const char* kind, int id, double len) {
@@ -34,8 +35,8 @@ inline Timeline make_timeline(int frames, double frame_s, double idle_s, double 
     int idle = 0;
     add("idle", idle++, lead_s);
     const double pattern[] = {3, 1, 2};
-    for (int i = 0; i < 3; ++i) add("sync", i, pattern[i] * sync_u), add("idle", idle++, sync_u);
-    for (int k = 0; k < frames; ++k) add("frame", k, frame_s * (1 + 0.1 * std::sin(k * 1.7))), add("idle", idle++, k + 1 < frames ? idle_s : lead_s);
+    for (int i = 0; i < 3 && sync_u > 0; ++i) add("sync", i, pattern[i] * sync_u), add("idle", idle++, sync_u);
+    for (int k = 0; k < frames; ++k) add("frame", k, frame_s * (1 + wobble * std::sin(k * 1.7))), add("idle", idle++, k + 1 < frames ? idle_s : lead_s);
     tl.markers.meta = {{"backend", "synthetic"}, {"kernel", "sobel"}};
     return tl;
 }

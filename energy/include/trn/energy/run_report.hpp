@@ -24,6 +24,7 @@ struct IntegrateRequest {
     AlignMode align = AlignMode::SameClock;
     double offset_s = 0;         // AlignMode::Offset
     double search_s = 0;         // AlignMode::Auto: half-width around offset_s (0: anywhere)
+    bool insist = false;         // AlignMode::Auto: accept an ambiguous estimate (with a warning) instead of refusing
     bool realtime = true;        // marker clock: CLOCK_REALTIME, else CLOCK_MONOTONIC
     IntegrationOptions integration;
 };
@@ -52,7 +53,8 @@ struct RunReport {
     std::vector<ReportFrame> frames;
 };
 
-// The whole step on parsed inputs (paths/hashes are left for the caller to fill in).
+// The whole step on parsed inputs (paths/hashes are left for the caller to fill in). Throws
+// trn::Error when automatic alignment is ambiguous (Alignment::ambiguous) and not insisted on.
 RunReport integrate_run(const PowerTrace& trace, const MarkerFile& markers, const IntegrateRequest& request);
 // Reads and hashes the files, then integrate_run.
 RunReport integrate_files(const std::string& log_path, const std::string& format, const ParseOptions& parse_options,

@@ -8,6 +8,13 @@
 
 namespace trn::energy {
 
+// Every parser drops a reading outside [kMinPlausibleW, kMaxPlausibleW] and counts it in the
+// trace's warnings: below a small noise floor a consumer cannot draw negative power (a sign or
+// decode glitch), and no logger this harness reads measures more than 10 kW (one -1e6 W glitch
+// would otherwise pull the idle baseline hundreds of watts negative).
+inline constexpr double kMinPlausibleW = -0.5;
+inline constexpr double kMaxPlausibleW = 10000;
+
 // How one sample relates to time.
 enum class SampleKind {
     Instant,       // w[i] is the power at t[i] (INA219, nvidia-smi power.draw.instant, tegrastats)
@@ -33,6 +40,9 @@ struct PowerTrace {
     std::vector<double> w;     // watts, finite
     double resolution_w = 0;   // quantisation step of a power reading (LSB), 0 when unknown
     std::vector<std::string> notes;  // hygiene: dropped rows, glitches, gaps, assumed values
+    // What a run report must surface as a warning (and the CLI on stderr), not only as a note:
+    // readings dropped as physically implausible (see kMinPlausibleW / kMaxPlausibleW).
+    std::vector<std::string> warnings;
     std::vector<Marker> markers;     // markers embedded in the log
 
     std::size_t size() const { return t.size(); }
