@@ -12,6 +12,7 @@
 #include "commands.hpp"
 #include "trn/energy/frame_runner.hpp"
 #include "trn/error.hpp"
+#include "trn/limits.hpp"
 #include "trn/registry.hpp"
 #include "trn/scoring_plan.hpp"
 
@@ -60,6 +61,7 @@ void add_frames_command(CLI::App& app) {
     cmd->add_option("-o,--out", a->out, "Marker file to write")->capture_default_str();
     cmd->callback([a] {
         if (a->particles <= 0) throw Error("--particles must be positive");
+        limits::check_count("--particles", a->particles, limits::kMaxParticles, limits::kParticleBytes);
         auto backend = default_registry().create(a->backend);
         energy::FrameRunConfig cfg;
         cfg.frames = a->frames, cfg.idle_s = a->idle_ms / 1000, cfg.lead_idle_s = a->lead_idle_ms / 1000, cfg.sync_unit_s = a->sync_unit_ms / 1000;

@@ -5,6 +5,7 @@
 
 #include "commands.hpp"
 #include "trn/io/image_io.hpp"
+#include "trn/limits.hpp"
 #include "trn/registry.hpp"
 
 namespace trn::cli {
@@ -20,6 +21,7 @@ void add_sobel_command(CLI::App& app) {
     cmd->add_option("-o,--out", a->out, "Output folder (created if missing)")->capture_default_str();
     cmd->callback([a] {
         const GrayImage img = load_gray(a->image);
+        limits::check_image(a->image + ": Sobel of image", img.width, img.height, limits::kMaxMapPixels, limits::kSobelBytesPerPixel);
         auto backend = default_registry().create(a->backend);
         std::vector<std::int16_t> gx(img.pixels.size()), gy(img.pixels.size());
         PhaseTimes t;
