@@ -42,31 +42,36 @@ std::string format_bytes(double bytes) {
 
 static_assert(kMaxMemoryShare == 0.5, "the message below says 'half'");
 
-void check_memory(const std::string& what, double bytes, std::uint64_t physical) {
+// The checks allocate nothing unless they throw: they run on every score / sobel call, and
+// steady-state calls must not allocate (tests/vulkan/test_vulkan_allocations.cpp).
+
+void check_memory(std::string_view what, double bytes, std::uint64_t physical) {
     if (physical == 0) return;
     const double limit = kMaxMemoryShare * static_cast<double>(physical);
     if (bytes > limit)
-        throw Error(what + " needs ~" + format_bytes(bytes) + " (limit " + format_bytes(limit) + ", half of this machine's " +
-                    format_bytes(static_cast<double>(physical)) + " of memory)");
+        throw Error(std::string(what) + " needs ~" + format_bytes(bytes) + " (limit " + format_bytes(limit) +
+                    ", half of this machine's " + format_bytes(static_cast<double>(physical)) + " of memory)");
 }
 
-void check_image(const std::string& what, std::int64_t width, std::int64_t height, std::int64_t max_pixels,
+void check_image(std::string_view what, std::int64_t width, std::int64_t height, std::int64_t max_pixels,
                  double bytes_per_pixel) {
-    const std::string sized = what + " " + size_text(width, height);
-    if (width <= 0 || height <= 0) throw Error(sized + " is empty");
+    auto sized = [&] { return std::string(what) + " " + size_text(width, height); };
+    if (width <= 0 || height <= 0) throw Error(sized() + " is empty");
     if (width > kMaxImageSide || height > kMaxImageSide)
-        throw Error(sized + " is too large: its sides may be at most " + std::to_string(kMaxImageSide) + " pixels");
+        throw Error(sized() + " is too large: its sides may be at most " + std::to_string(kMaxImageSide) + " pixels");
     const double bytes = bytes_per_pixel * static_cast<double>(width) * static_cast<double>(height);
     if (width * height > max_pixels)
-        throw Error(sized + " needs ~" + format_bytes(bytes) + " (limit " + pixel_limit_text(max_pixels) + ")");
-    check_memory(sized, bytes);
+        throw Error(sized() + " needs ~" + format_bytes(bytes) + " (limit " + pixel_limit_text(max_pixels) + ")");
+    if (physical_memory_bytes() != 0 && bytes > kMaxMemoryShare * static_cast<double>(physical_memory_bytes()))
+        check_memory(sized(), bytes);
 }
 
-void check_count(const std::string& what, std::int64_t count, std::int64_t max, double bytes_each) {
+void check_count(std::string_view what, std::int64_t count, std::int64_t max, double bytes_each) {
+    auto counted = [&] { return std::string(what) + " " + std::to_string(count); };
     const double bytes = bytes_each * static_cast<double>(count);
-    if (count > max)
-        throw Error(what + " " + std::to_string(count) + " needs ~" + format_bytes(bytes) + " (limit " + std::to_string(max) + ")");
-    check_memory(what + " " + std::to_string(count), bytes);
+    if (count > max) throw Error(counted() + " needs ~" + format_bytes(bytes) + " (limit " + std::to_string(max) + ")");
+    if (physical_memory_bytes() != 0 && bytes > kMaxMemoryShare * static_cast<double>(physical_memory_bytes()))
+        check_memory(counted(), bytes);
 }
 
 }  // namespace trn::limits

@@ -8,6 +8,7 @@
 // out-of-memory kill. docs/RELIABILITY.md ("Resource limits") lists them for users.
 #include <cstdint>
 #include <string>
+#include <string_view>
 
 namespace trn::limits {
 
@@ -47,19 +48,20 @@ std::uint64_t physical_memory_bytes();
 // "1.6 GB", "512 MB", "40 kB": decimal units, two significant digits or more.
 std::string format_bytes(double bytes);
 
+// The checks allocate nothing unless they throw (they run on every score and sobel call).
 // Checks an image of w x h pixels against kMaxImageSide, max_pixels and the memory share
 // (bytes_per_pixel * w * h). Throws trn::Error such as
 //   "map.png: image 40000x40000 needs ~3.2 GB (limit 1073741824 pixels, e.g. 32768x32768)".
 // `what` names the input ("upload_map: map", "big.png: image", "--size-m 90000").
-void check_image(const std::string& what, std::int64_t width, std::int64_t height, std::int64_t max_pixels,
+void check_image(std::string_view what, std::int64_t width, std::int64_t height, std::int64_t max_pixels,
                  double bytes_per_pixel);
 
 // Checks a count against `max` and the memory share (bytes_each * count). Throws trn::Error such as
 //   "score: pose count 5000000 needs ~640 MB (limit 4194304)" (`what`: "score: pose count").
-void check_count(const std::string& what, std::int64_t count, std::int64_t max, double bytes_each);
+void check_count(std::string_view what, std::int64_t count, std::int64_t max, double bytes_each);
 
 // Checks an estimate of `bytes` against kMaxMemoryShare of physical memory (`physical`: the
 // machine's, or a stand-in for tests).
-void check_memory(const std::string& what, double bytes, std::uint64_t physical = physical_memory_bytes());
+void check_memory(std::string_view what, double bytes, std::uint64_t physical = physical_memory_bytes());
 
 }  // namespace trn::limits
