@@ -436,7 +436,7 @@ void ProceduralMapOptions::validate() const {
     const double w = width_m / metres_per_pixel, h = height_m / metres_per_pixel;
     if (!(width_m > 0 && height_m > 0) || !(w >= 1.5 && h >= 1.5))
         throw Error(std::string("procedural map: ") + size + " is smaller than 2x2 pixels");
-    const double side = double(limits::kMaxImageSide) + 1;  // anything larger fails the same way
+    constexpr double side = 1e18;  // keeps llround within int64; anything that large fails anyway
     limits::check_image(std::string("procedural map ") + size + ": image",
                         static_cast<std::int64_t>(std::llround(std::min(w, side))),
                         static_cast<std::int64_t>(std::llround(std::min(h, side))), limits::kMaxMapPixels,

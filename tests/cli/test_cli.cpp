@@ -119,7 +119,7 @@ TEST_F(Cli, OversizedInputsFailAtOnceWithTheLimit) {
         {"score --map " + path("huge.png") + " --template " + path("templ.png") + " --poses " + path("poses.csv"),
          "huge.png: image 40000x40000 needs ~3.2 GB (limit 1073741824 pixels, e.g. 32768x32768)"},
         {"sobel " + path("huge.png"), "huge.png: image 40000x40000 needs ~3.2 GB"},
-        {"simulate --scenario FC-300 --size-m 70000 --frames 2 --out " + path("flight"), "is too large: its sides may be at most 65536 pixels"},
+        {"simulate --scenario FC-300 --size-m 70000 --frames 2 --out " + path("flight"), "image 70000x70000 is too large: its sides may be at most 65536 pixels"},
         {"frames --kernel ncc --particles 5000000 --frames 1 --out " + path("m.csv"), "--particles 5000000 needs ~640 MB (limit 4194304)"},
     };
     for (const auto& c : cases) {

@@ -137,7 +137,7 @@ TEST(Limits, ProceduralMapAndCameraSizesAreCheckedBeforeGenerating) {
     EXPECT_HAS(fast_error([&] { sim::generate_procedural_map(o); }),
                "procedural map 40000 x 40000 m at 1 m/px: image 40000x40000 needs ~1.6 GB");
     o.width_m = 1e15;  // would overflow int pixel sizes
-    EXPECT_HAS(fast_error([&] { sim::generate_procedural_map(o); }), "is too large: its sides may be at most 65536 pixels");
+    EXPECT_HAS(fast_error([&] { sim::generate_procedural_map(o); }), "image 1000000000000000x40000 is too large: its sides may be at most 65536 pixels");
     o.width_m = o.height_m = 100;
     EXPECT_HAS(fast_error([&] { sim::generate_procedural_region(o, 0, 0, 65537, 10); }), "procedural region 65537x10 is too large");
     const sim::Camera camera{5000, 4000, 60};  // 20 Mpx
