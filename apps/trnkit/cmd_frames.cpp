@@ -13,6 +13,7 @@
 #include "trn/energy/frame_runner.hpp"
 #include "trn/error.hpp"
 #include "trn/io/atomic_file.hpp"
+#include "trn/limits.hpp"
 #include "trn/registry.hpp"
 #include "trn/scoring_plan.hpp"
 
@@ -66,6 +67,7 @@ void add_frames_command(CLI::App& app) {
     cmd->callback([a] {
         if (a->particles <= 0) throw Error("--particles must be positive");
         io::check_output_file(a->out, "--out");  // before the run, which takes minutes
+        limits::check_count("--particles", a->particles, limits::kMaxParticles, limits::kParticleBytes);
         auto backend = default_registry().create(a->backend);
         energy::FrameRunConfig cfg;
         cfg.frames = a->frames, cfg.idle_s = a->idle_ms / 1000, cfg.lead_idle_s = a->lead_idle_ms / 1000, cfg.sync_unit_s = a->sync_unit_ms / 1000;

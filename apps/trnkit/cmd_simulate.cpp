@@ -63,6 +63,7 @@ void make_maps(const SimulateArgs& a, const sim::Scenario& sc, sim::Map& base, s
     const double footprint = sc.altitude_m / sim::Camera{640, 480, a.fov}.focal_px() * 400 * 2;
     o.width_m = o.height_m = a.size_m > 0 ? a.size_m : std::ceil((sc.nominal_size_m * 1.1 + footprint + 100) / 100) * 100;
     if (!std::isnan(a.lat) && !std::isnan(a.lon)) o.origin = {a.lat, a.lon};
+    o.validate();  // a bad size is one error line, not a progress line and then the error
     std::cerr << "generating a " << sim::to_string(o.style) << " map of " << o.width_m << " x " << o.height_m << " m at "
               << o.metres_per_pixel << " m/px (seed " << o.seed << ")\n";
     base = sim::generate_procedural_map(o);

@@ -7,6 +7,7 @@
 #include "trn/io/atomic_file.hpp"
 #include "trn/io/image_io.hpp"
 #include "trn/io/output_folder.hpp"
+#include "trn/limits.hpp"
 #include "trn/registry.hpp"
 
 namespace trn::cli {
@@ -27,6 +28,7 @@ void add_sobel_command(CLI::App& app) {
         const std::string px = a->out + "/gx.png", py = a->out + "/gy.png";
         io::check_output_folder(a->out, "sobel", /*force=*/true);
         if (std::filesystem::exists(a->out)) io::check_output_file(px, "--out"), io::check_output_file(py, "--out");
+        limits::check_image(a->image + ": Sobel of image", img.width, img.height, limits::kMaxMapPixels, limits::kSobelBytesPerPixel);
         auto backend = default_registry().create(a->backend);
         std::vector<std::int16_t> gx(img.pixels.size()), gy(img.pixels.size());
         PhaseTimes t;

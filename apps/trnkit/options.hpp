@@ -9,6 +9,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "trn/limits.hpp"
+
 namespace trn::cli {
 
 // CLI11 transform: a whole number in [lo, hi]; rewrites the text to canonical decimal so CLI11's
@@ -19,7 +21,7 @@ CLI::Validator whole_in(std::uint64_t lo, std::uint64_t hi);
 CLI::Validator any_seed();
 
 // Bounds shared by several subcommands (stated in their help through the validators).
-inline constexpr std::uint64_t kMaxParticles = 1'000'000;   // particles scored per frame
+inline constexpr std::uint64_t kMaxParticles = trn::limits::kMaxParticles;  // particles scored per frame (trn/limits.hpp)
 inline constexpr std::uint64_t kMinYear = 1900, kMaxYear = 2200;  // map / flight years
 inline constexpr std::uint64_t kMaxTemplateWidth = 4096;    // downscaled template width, pixels
 

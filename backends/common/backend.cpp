@@ -4,6 +4,8 @@
 #include <cmath>
 #include <string>
 
+#include "trn/limits.hpp"
+
 namespace trn {
 namespace {
 
@@ -36,6 +38,7 @@ MapHandle Backend::upload_map(GrayView map, PhaseTimes* times) {
     check_view(map, "upload_map", "map");
     if (map.width < 2 || map.height < 2)
         throw Error("upload_map: map " + size_text(map.width, map.height) + " is smaller than 2x2");
+    limits::check_image("upload_map: map", map.width, map.height, limits::kMaxMapPixels, limits::kMapBytesPerPixel);
     if (times) *times = {};
     return do_upload_map(map, times);
 }
@@ -50,6 +53,8 @@ void Backend::score(const MapHandle& map, const ScoringPlan& plan, std::span<con
     if (map->width() < plan.width || map->height() < plan.height)
         throw Error("score: map " + size_text(map->width(), map->height()) + " is smaller than the template " +
                     size_text(plan.width, plan.height));
+    limits::check_count("score: pose count", static_cast<std::int64_t>(poses.size()), limits::kMaxParticles,
+                        limits::kParticleBytes);
     if (out.size() < poses.size())
         throw Error("score: output holds " + std::to_string(out.size()) + " scores for " +
                     std::to_string(poses.size()) + " poses");
@@ -71,6 +76,8 @@ void Backend::sobel(GrayView src, Int16View gx, Int16View gy, PhaseTimes* times)
         if (out->width != src.width || out->height != src.height)
             throw Error("sobel: output " + size_text(out->width, out->height) + " differs from the source " +
                         size_text(src.width, src.height));
+    // Outputs are the caller's, so only the backend's share (a band or a copy of the source) counts here.
+    limits::check_image("sobel: image", src.width, src.height, limits::kMaxMapPixels, limits::kMapBytesPerPixel);
     if (times) *times = {};
     do_sobel(src, gx, gy, times);
 }

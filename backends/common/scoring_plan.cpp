@@ -7,6 +7,7 @@
 #include <string>
 
 #include "trn/error.hpp"
+#include "trn/limits.hpp"
 
 namespace trn {
 
@@ -57,6 +58,8 @@ ScoringPlan make_scoring_plan(const TemplateView& templ, const ScoreOptions& opt
     if (templ.stride < templ.width)
         throw Error("score: template stride " + std::to_string(templ.stride) + " is smaller than its width " +
                     std::to_string(templ.width));
+    limits::check_image("score: template", templ.width, templ.height, limits::kMaxTemplatePixels,
+                        limits::kTemplateBytesPerPixel);
     if (!(options.min_valid_fraction >= 0.0 && options.min_valid_fraction <= 1.0))
         throw Error("score: min_valid_fraction " + std::to_string(options.min_valid_fraction) +
                     " is outside [0, 1]");
@@ -80,6 +83,8 @@ ScoringPlan make_scoring_plan(const TemplateView& templ, const ScoreOptions& opt
             break;
         case Sampling::Kind::Explicit:
             if (s.points.empty()) throw Error("score: explicit sampling has no points");
+            limits::check_count("score: explicit sample count", static_cast<std::int64_t>(s.points.size()),
+                                limits::kMaxTemplatePixels, limits::kTemplateBytesPerPixel);
             for (std::size_t i = 0; i < s.points.size(); ++i) {
                 const SamplePoint& p = s.points[i];
                 if (p.u < 0 || p.v < 0 || p.u >= templ.width || p.v >= templ.height)

@@ -82,6 +82,11 @@ VulkanBackend::VulkanBackend(int index)
         6 * sizeof(std::uint32_t));
     sobel_kernel_ = std::make_unique<Kernel>(ctx, *cache_, std::span<const std::uint32_t>(sobel3x3), "sobel3x3",
                                              std::vector<Binding>(3), 4 * sizeof(std::uint32_t));
+    // Bytes one map band may hold: the storage-buffer range (bytes layout) or texel-buffer elements
+    // (quad layout), capped at 1 GiB per allocation.
+    constexpr std::size_t kMaxAllocation = std::size_t(1) << 30;
+    map_placement_.band_bytes = std::min<std::size_t>(ctx.limits().maxStorageBufferRange, kMaxAllocation) & ~std::size_t(3);
+    map_placement_.band_quads = std::min<std::size_t>(ctx.limits().maxTexelBufferElements, kMaxAllocation / 4);
     score_group_size_ = choose_score_group_size(ctx);
     particles_per_group_ = choose_particles_per_group(ctx);
     sobel_group_x_ = std::min<std::uint32_t>(64, ctx.limits().maxComputeWorkGroupSize[0]);
@@ -127,16 +132,12 @@ void VulkanBackend::barrier_after_download() {
 MapHandle VulkanBackend::do_upload_map(GrayView map, PhaseTimes* times) {
     Context& ctx = *context_;
     const std::size_t w = static_cast<std::size_t>(map.width), h = static_cast<std::size_t>(map.height);
-    // Bytes one band may hold: the storage-buffer range (bytes layout) or texel-buffer elements
-    // (quad layout), capped at 1 GiB per allocation.
-    constexpr std::size_t kMaxAllocation = std::size_t(1) << 30;
-    const std::size_t max_bytes = std::min<std::size_t>(ctx.limits().maxStorageBufferRange, kMaxAllocation) & ~std::size_t(3);
-    const std::size_t max_quads = std::min<std::size_t>(ctx.limits().maxTexelBufferElements, kMaxAllocation / 4);
+    const std::size_t max_bytes = map_placement_.band_bytes, max_quads = map_placement_.band_quads;
     auto handle = std::make_shared<VulkanMap>(this, context_, map.width, map.height);
 
-    // Quads: H-1 quad rows of W words, no overlap.
+    // Quads: H-1 quad rows of W words, no overlap; only while they fit the quad budget.
     const std::size_t quad_rows_per_band = max_quads / w;
-    const bool quads = quad_maps_allowed() && quad_rows_per_band > 0 &&
+    const bool quads = quad_maps_allowed() && 4 * w * (h - 1) <= map_placement_.quad_budget && quad_rows_per_band > 0 &&
                        (h - 1 + quad_rows_per_band - 1) / quad_rows_per_band <= kMaxMapChunks;
     auto band_bytes = [&](std::size_t rows) { return quads ? rows * w * 4 : (rows * w + 3) & ~std::size_t(3); };
     std::size_t rows_per_chunk = quads ? std::min(h - 1, quad_rows_per_band) : h, chunk_count = 1;
@@ -155,10 +156,11 @@ MapHandle VulkanBackend::do_upload_map(GrayView map, PhaseTimes* times) {
     handle->rows_per_chunk = static_cast<std::uint32_t>(rows_per_chunk);
     handle->quads = quads;
 
-    const auto t0 = Clock::now();
-    VkCommandBuffer cmd = recorder_->begin();
-    recorder_->mark(0);
+    // One submission per band, so that on staging devices at most one band's staging copy exists at
+    // a time (host memory: the map plus one band, not the map plus all of them).
+    double host_ms = 0, device_ms = 0;
     for (std::size_t c = 0; c < chunk_count; ++c) {
+        const auto t0 = Clock::now();
         const std::size_t first = c * rows_per_chunk;
         const std::size_t rows = quads ? std::min(rows_per_chunk, h - 1 - first) : std::min(rows_per_chunk + 1, h - first);
         auto chunk = std::make_unique<Mirror>(ctx, "a map band", quads ? VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT
@@ -179,16 +181,19 @@ MapHandle VulkanBackend::do_upload_map(GrayView map, PhaseTimes* times) {
             auto* dst = static_cast<std::uint8_t*>(chunk->host());
             for (std::size_t y = 0; y < rows; ++y) std::memcpy(dst + y * w, map.row(static_cast<int>(first + y)), w);
         }
+        host_ms += ms_since(t0);
+        VkCommandBuffer cmd = recorder_->begin();
+        recorder_->mark(0);
         chunk->record_upload(cmd, band_bytes(rows));
+        recorder_->mark(1);
+        barrier_after_upload();
+        recorder_->submit_and_wait("vkQueueSubmit (map upload)");
+        chunk->drop_staging();
+        device_ms += recorder_->elapsed_ms(0, 1);
         if (quads) handle->views.push_back(std::make_unique<TexelView>(ctx, chunk->device(), VK_FORMAT_R32_UINT, band_bytes(rows)));
         handle->chunks.push_back(std::move(chunk));
     }
-    const double host_ms = ms_since(t0);
-    recorder_->mark(1);
-    barrier_after_upload();
-    recorder_->submit_and_wait("vkQueueSubmit (map upload)");
-    for (auto& chunk : handle->chunks) chunk->drop_staging();
-    if (times) times->upload_ms = host_ms + recorder_->elapsed_ms(0, 1);
+    if (times) times->upload_ms = host_ms + device_ms;
     ctx.throw_on_validation_messages("upload_map");
     return handle;
 }

@@ -15,10 +15,23 @@ namespace trn::vk {
 
 inline constexpr std::uint32_t kMaxMapChunks = 8;  // TRN_MAX_MAP_CHUNKS in ncc_score.comp
 
+// Most bytes a map may take in the quad layout (4 per pixel, against 1 in the bytes layout); larger
+// maps use the bytes layout. 256 MiB keeps maps up to ~8192x8192 on the faster texel fetch while a
+// 16384x16384 map takes 256 MiB instead of 1 GiB (measured in docs/RELIABILITY.md).
+inline constexpr std::size_t kQuadMapBudget = std::size_t(256) << 20;
+
+// How maps are laid out on the device: the quad budget and the most one band may hold. The backend
+// takes them from the device; tests lower them to reach the multi-band paths with small maps.
+struct MapPlacement {
+    std::size_t quad_budget = kQuadMapBudget;  // bytes of quads, at most
+    std::size_t band_quads = 0;                // quads per band (maxTexelBufferElements, <= 1 GiB)
+    std::size_t band_bytes = 0;                // bytes per band (maxStorageBufferRange, <= 1 GiB, multiple of 4)
+};
+
 // A map on the device as up to kMaxMapChunks row bands (layouts in ncc_score.comp). Quad layout:
 // uniform texel buffers (R32_UINT) with a word per pixel holding its 2x2 bilinear footprint, band
 // c holds quad rows [c*R, c*R + R), each band within maxTexelBufferElements. Bytes layout (when
-// quads would need too many bands, or TRN_VULKAN_MAP_LAYOUT=bytes): storage buffers with four
+// quads would exceed kQuadMapBudget or need too many bands, or TRN_VULKAN_MAP_LAYOUT=bytes): storage buffers with four
 // pixels to a word, band c holds rows [c*R, c*R + R] (one row of overlap), each band within
 // maxStorageBufferRange. Keeps the context alive so a map may outlive its backend object safely.
 class VulkanMap : public MapStorage {
@@ -37,6 +50,8 @@ public:
     explicit VulkanBackend(int index);
     ~VulkanBackend() override;
     const DeviceInfo& info() const override { return info_; }
+    const MapPlacement& map_placement() const { return map_placement_; }
+    void set_map_placement(const MapPlacement& p) { map_placement_ = p; }  // for tests; values must be > 0
 
 protected:
     MapHandle do_upload_map(GrayView map, PhaseTimes* times) override;
@@ -58,6 +73,7 @@ private:
     std::uint32_t score_group_size_ = 64;
     std::uint32_t particles_per_group_ = 1;  // at most; see do_score
     std::uint32_t sobel_group_x_ = 64, sobel_group_y_ = 1;
+    MapPlacement map_placement_;
     // Grow-only per-call buffers.
     std::unique_ptr<Mirror> samples_, affines_, sums_;
     // What the binding of the map layout a map does not use points at (every descriptor must be valid).

@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <unordered_set>
 
 #include "trn/error.hpp"
 #include "trn/filter/kld.hpp"
+#include "trn/limits.hpp"
 
 namespace trn::filter {
 namespace {
@@ -58,6 +60,10 @@ void FilterConfig::validate() const {
     if (min_particles < 1) throw Error("filter config: min_particles must be >= 1");
     if (max_particles < min_particles) throw Error("filter config: max_particles must be >= min_particles");
     if (fixed_particles < 1) throw Error("filter config: fixed_particles must be >= 1");
+    limits::check_count("filter config: max_particles", static_cast<std::int64_t>(std::min<std::size_t>(max_particles, INT64_MAX)),
+                        limits::kMaxParticles, limits::kParticleBytes);
+    limits::check_count("filter config: fixed_particles", static_cast<std::int64_t>(std::min<std::size_t>(fixed_particles, INT64_MAX)),
+                        limits::kMaxParticles, limits::kParticleBytes);
 }
 
 ParticleFilter::ParticleFilter(ParticleScorer& scorer, const FilterConfig& config)

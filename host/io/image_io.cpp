@@ -6,11 +6,18 @@
 
 #include "trn/error.hpp"
 #include "trn/io/atomic_file.hpp"
+#include "trn/io/image_header.hpp"
+#include "trn/limits.hpp"
 
 namespace trn {
 
 GrayImage load_gray(const std::string& path) {
     if (!std::filesystem::exists(path)) throw Error(path + ": no such file");
+    // Sizes the header states are checked before decoding; other formats after (OpenCV refuses
+    // more than 2^30 pixels by itself, which is also kMaxMapPixels).
+    const std::string what = path + ": image";
+    if (const auto size = read_image_size(path))
+        limits::check_image(what, size->width, size->height, limits::kMaxMapPixels, limits::kLoadBytesPerPixel);
     cv::Mat m;
     try {
         m = cv::imread(path, cv::IMREAD_GRAYSCALE);
@@ -18,6 +25,7 @@ GrayImage load_gray(const std::string& path) {
         throw Error(path + ": cannot decode image (" + e.msg + ")");
     }
     if (m.empty()) throw Error(path + ": not a readable image (corrupt or unsupported format)");
+    limits::check_image(what, m.cols, m.rows, limits::kMaxMapPixels, limits::kLoadBytesPerPixel);
     GrayImage img{m.cols, m.rows, std::vector<std::uint8_t>(std::size_t(m.cols) * m.rows)};
     for (int y = 0; y < m.rows; ++y) std::copy_n(m.ptr<std::uint8_t>(y), m.cols, img.pixels.data() + std::size_t(y) * m.cols);
     return img;

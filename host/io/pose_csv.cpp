@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "trn/error.hpp"
+#include "trn/limits.hpp"
 
 namespace trn {
 namespace {
@@ -19,7 +20,7 @@ std::string trim(std::string_view s) {
 
 }  // namespace
 
-std::vector<Pose> read_poses_csv(std::istream& in, const std::string& source) {
+std::vector<Pose> read_poses_csv(std::istream& in, const std::string& source, std::int64_t max_poses) {
     std::vector<Pose> poses;
     std::string line;
     int line_no = 0;
@@ -53,6 +54,9 @@ std::vector<Pose> read_poses_csv(std::istream& in, const std::string& source) {
                 throw Error(source + ":" + std::to_string(line_no) + ": field " + std::to_string(k + 1) + " is not finite");
         }
         if (!(v[3] > 0)) throw Error(source + ":" + std::to_string(line_no) + ": scale must be > 0");
+        if (static_cast<std::int64_t>(poses.size()) >= max_poses)  // stop before the vector grows further
+            limits::check_count(source + ":" + std::to_string(line_no) + ": pose count",
+                                static_cast<std::int64_t>(poses.size()) + 1, max_poses, limits::kParticleBytes);
         poses.push_back({v[0], v[1], v[2], v[3]});
     }
     if (in.bad()) throw Error(source + ": read error");

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "trn/error.hpp"
+#include "trn/limits.hpp"
 
 namespace trn::sim {
 
@@ -13,6 +14,8 @@ double Camera::focal_px() const { return 0.5 * width / std::tan(0.5 * hfov_deg *
 void Camera::validate() const {
     if (width < 2 || height < 2)
         throw Error("camera: size " + std::to_string(width) + "x" + std::to_string(height) + " must be at least 2x2");
+    // Frames are rendered at this size and scored (downscaled) as templates.
+    limits::check_image("camera: frame", width, height, limits::kMaxTemplatePixels, limits::kLoadBytesPerPixel);
     if (!(hfov_deg > 1 && hfov_deg < 170))
         throw Error("camera: field of view " + std::to_string(hfov_deg) + " degrees must be in (1, 170)");
 }

@@ -5,12 +5,14 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "random.hpp"
 #include "trn/error.hpp"
+#include "trn/limits.hpp"
 
 namespace trn::sim {
 namespace {
@@ -428,17 +430,22 @@ int ProceduralMapOptions::height_px() const { return static_cast<int>(std::lroun
 void ProceduralMapOptions::validate() const {
     if (!(metres_per_pixel >= 0.05 && metres_per_pixel <= 20))
         throw Error("procedural map: resolution " + std::to_string(metres_per_pixel) + " m/px must be in [0.05, 20]");
-    if (!(width_m > 0 && height_m > 0) || width_px() < 2 || height_px() < 2)
-        throw Error("procedural map: size " + std::to_string(width_m) + " x " + std::to_string(height_m) +
-                    " m is smaller than 2x2 pixels");
-    if (double(width_px()) * height_px() > 1.0e9)
-        throw Error("procedural map: " + std::to_string(width_px()) + "x" + std::to_string(height_px()) +
-                    " pixels is too large; generate it region by region");
+    char size[96];
+    std::snprintf(size, sizeof size, "%g x %g m at %g m/px", width_m, height_m, metres_per_pixel);
+    // Pixels in double first: width_px() would overflow int for absurd sizes.
+    const double w = width_m / metres_per_pixel, h = height_m / metres_per_pixel;
+    if (!(width_m > 0 && height_m > 0) || !(w >= 1.5 && h >= 1.5))
+        throw Error(std::string("procedural map: ") + size + " is smaller than 2x2 pixels");
+    constexpr double side = 1e18;  // keeps llround within int64; anything that large fails anyway
+    limits::check_image(std::string("procedural map ") + size + ": image",
+                        static_cast<std::int64_t>(std::llround(std::min(w, side))),
+                        static_cast<std::int64_t>(std::llround(std::min(h, side))), limits::kMaxMapPixels,
+                        limits::kMapBytesPerPixel);
 }
 
 GrayImage generate_procedural_region(const ProceduralMapOptions& options, int x0, int y0, int w, int h) {
     options.validate();
-    if (w <= 0 || h <= 0) throw Error("procedural region: size " + std::to_string(w) + "x" + std::to_string(h) + " is empty");
+    limits::check_image("procedural region", w, h, limits::kMaxMapPixels, limits::kMapBytesPerPixel);
     const double mpp = options.metres_per_pixel;
     const Scene scene(options, x0 * mpp, y0 * mpp, (x0 + w) * mpp, (y0 + h) * mpp);
     GrayImage img{w, h, std::vector<std::uint8_t>(std::size_t(w) * h)};

@@ -23,7 +23,8 @@
 //         (x, y+1), (x+1, y+1) in bytes 0..3, for rows 0..H-2; band c holds quad rows [c*R, c*R + R).
 //   bytes (binding 3, storage buffers): four pixels to a word, row-major; band c holds rows
 //         [c*R, c*R + R] (one row of overlap, so the 2x2 footprint of any sample lies in one band).
-//         Used when quads would need more bands than that (4x the memory of bytes).
+//         Used when quads (4x the memory of bytes) would exceed kQuadMapBudget (256 MiB) or
+//         need more bands than that.
 #extension GL_GOOGLE_include_directive : require
 #ifdef TRN_SUBGROUP_REDUCE
 #extension GL_KHR_shader_subgroup_basic : require

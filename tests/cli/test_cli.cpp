@@ -1,9 +1,14 @@
 // The trnkit command line, run as a user would: real processes, real files.
 #include <gtest/gtest.h>
 
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <unistd.h>
 
 #include <opencv2/imgcodecs.hpp>
 
@@ -88,6 +93,33 @@ TEST_F(Cli, HelpWorksEverywhere) {
         const Result r = run(std::string(sub) + " --help");
         EXPECT_EQ(r.code, 0) << sub;
         EXPECT_NE(r.output.find("Usage"), std::string::npos) << sub;
+    }
+}
+
+// Too-large inputs are refused up front (header / option sizes), in one line, before any big
+// allocation: no child process ever grows past 150 MB (each case would need 180 MB to 4.9 GB).
+TEST_F(Cli, OversizedInputsFailAtOnceWithTheLimit) {
+    // A PNG header claiming 40000x40000 pixels and no pixel data: refused before decoding.
+    unsigned char png[33] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n', 0, 0, 0, 13, 'I', 'H', 'D', 'R',
+                             0, 0, 0x9C, 0x40, 0, 0, 0x9C, 0x40, 8};
+    std::ofstream(path("huge.png"), std::ios::binary).write(reinterpret_cast<const char*>(png), sizeof png);
+    const struct {
+        std::string args, expect;
+    } cases[] = {
+        {"score --map " + path("huge.png") + " --template " + path("templ.png") + " --poses " + path("poses.csv"),
+         "huge.png: image 40000x40000 needs ~3.2 GB (limit 1073741824 pixels, e.g. 32768x32768)"},
+        {"sobel " + path("huge.png"), "huge.png: image 40000x40000 needs ~3.2 GB"},
+        {"simulate --scenario FC-300 --size-m 20000 --mpp 0.25 --frames 2 --out " + path("flight"), "image 80000x80000 is too large: its sides may be at most 65536 pixels"},
+        {"frames --kernel ncc --particles 5000000 --frames 1 --out " + path("m.csv"), "--particles 5000000 needs ~640 MB (limit 4194304)"},
+    };
+    for (const auto& c : cases) {
+        const Result r = run(c.args);
+        EXPECT_NE(r.code, 0) << c.args;
+        EXPECT_NE(r.output.find(c.expect), std::string::npos) << c.args << "\n" << r.output;
+        EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+        rusage children{};
+        ASSERT_EQ(getrusage(RUSAGE_CHILDREN, &children), 0);
+        EXPECT_LT(children.ru_maxrss, 150 * 1024) << c.args << ": largest child so far, kB";  // ru_maxrss is in kB
     }
 }
 

@@ -78,7 +78,7 @@ TEST_F(CliInput, CountsRefuseSignsOverflowAndOutOfRangeNamingTheOption) {
         {"simulate --scenario NOPE --base-year 20008 --out " + path("f"), "--base-year: '20008' is outside [1900, 2200]"},
         {"energy integrate " + path("none.log") + " --markers " + path("none.csv") + " --min-samples -1", "--min-samples: '-1'"},
         {"localize --dataset " + path("none") + " --max-particles -1", "--max-particles: '-1'"},
-        {"localize --dataset " + path("none") + " --particles 0", "--particles: '0' is outside [1, 1000000]"},
+        {"localize --dataset " + path("none") + " --particles 0", "--particles: '0' is outside [1, 4194304]"},
         {"frames --backend nosuch --frames 0", "--frames: '0' is outside"},
         {"frames --backend nosuch --particles -5", "--particles: '-5'"},
         {"check -n 0x10", "--particles: '0x10' is not a whole number"},

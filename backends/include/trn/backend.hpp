@@ -49,7 +49,8 @@ public:
     virtual ~Backend() = default;
     virtual const DeviceInfo& info() const = 0;
 
-    // Copies an 8-bit grey map (any size from 2x2 up to at least 16384x16384) to the backend.
+    // Copies an 8-bit grey map to the backend: from 2x2 up to trn::limits::kMaxMapPixels (2^30)
+    // pixels with sides up to kMaxImageSide (65536); a device may refuse less, naming its limit.
     MapHandle upload_map(GrayView map, PhaseTimes* times = nullptr);
 
     // Scores every pose against the plan's template; out.size() must be >= poses.size() and

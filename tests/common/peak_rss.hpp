@@ -1,0 +1,37 @@
+#pragma once
+// Peak resident memory of this process around one operation (Linux /proc), for tests that check
+// memory estimates: reset the high-water mark, run, read how far it rose above the starting RSS.
+#include <malloc.h>
+
+#include <cstdint>
+#include <fstream>
+#include <optional>
+#include <string>
+
+namespace trn::test {
+
+// "VmRSS" / "VmHWM" of /proc/self/status in bytes; 0 when absent.
+inline std::uint64_t proc_status_bytes(const std::string& key) {
+    std::ifstream f("/proc/self/status");
+    for (std::string line; std::getline(f, line);)
+        if (line.rfind(key + ":", 0) == 0) return std::stoull(line.substr(key.size() + 1)) * 1024;  // "NNN kB"
+    return 0;
+}
+
+// Bytes the peak RSS rose above the RSS before `work` ran; nullopt when the kernel cannot reset
+// the high-water mark (writing 5 to /proc/self/clear_refs, Linux >= 4.0).
+template <typename Work>
+std::optional<std::uint64_t> peak_rss_growth(Work&& work) {
+    malloc_trim(0);  // freed heap memory still counts as resident and would be reused unseen
+    {
+        std::ofstream clear("/proc/self/clear_refs");
+        if (!(clear << "5" << std::flush)) return std::nullopt;
+    }
+    const std::uint64_t before = proc_status_bytes("VmRSS");
+    if (before == 0 || proc_status_bytes("VmHWM") > before + (std::uint64_t(1) << 20)) return std::nullopt;
+    work();
+    const std::uint64_t peak = proc_status_bytes("VmHWM");
+    return peak > before ? peak - before : 0;
+}
+
+}  // namespace trn::test

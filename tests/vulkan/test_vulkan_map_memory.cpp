@@ -1,0 +1,121 @@
+// How the Vulkan backend lays a map out and what that costs in memory: quads (4 B/px) only up to
+// the quad budget, bytes (1 B/px) beyond; band splitting in both layouts (reached with small maps
+// by lowering the band sizes); on staging devices at most one band's staging copy at a time.
+#include <cstdint>
+#include <vector>
+
+#include "peak_rss.hpp"
+#include "vulkan_backend_impl.hpp"
+#include "vulkan_test_support.hpp"
+
+namespace trn::test {
+namespace {
+
+vk::VulkanBackend& as_vulkan(Backend& b) { return dynamic_cast<vk::VulkanBackend&>(b); }
+const vk::VulkanMap& as_vulkan(const MapHandle& m) { return dynamic_cast<const vk::VulkanMap&>(*m); }
+
+// A w x h map of cheap deterministic content (large maps: no OpenCV blur).
+std::vector<std::uint8_t> plain_map(int w, int h) {
+    std::vector<std::uint8_t> px(std::size_t(w) * h);
+    for (std::size_t i = 0; i < px.size(); ++i) px[i] = static_cast<std::uint8_t>((i * 7 + (i >> 9) * 13) & 0xFF);
+    return px;
+}
+
+// Scores on the placement-limited backend match cpu-ref (dense only: each band count is a new
+// pipeline, slow to build on lavapipe, and sampling does not depend on the layout).
+void matches_reference(Backend& dut, const PaddedGray& map) {
+    auto ref = default_registry().create("cpu-ref");
+    const PaddedGray templ = textured_image(41, 29, 72);
+    ScoreOptions options;
+    options.min_valid_fraction = 0.5;
+    expect_scores_match(dut, *ref, map.view(), templ.view(), random_poses(60, map.width, map.height, 73), options);
+}
+
+TEST(VulkanMapLayout, QuadsUpToTheBudgetThenBytes) {
+    TRN_REQUIRE_VULKAN();
+    auto dut = default_registry().create("vulkan");
+    vk::MapPlacement p = as_vulkan(*dut).map_placement();
+    EXPECT_EQ(p.quad_budget, vk::kQuadMapBudget);
+    const PaddedGray map = textured_image(301, 207, 71);
+    p.quad_budget = 4 * 301 * 206;  // exactly the quads of this map
+    as_vulkan(*dut).set_map_placement(p);
+    EXPECT_TRUE(as_vulkan(dut->upload_map(map.view())).quads);
+    p.quad_budget -= 1;
+    as_vulkan(*dut).set_map_placement(p);
+    EXPECT_FALSE(as_vulkan(dut->upload_map(map.view())).quads);
+    matches_reference(*dut, map);
+}
+
+TEST(VulkanMapLayout, MapsSplitIntoBandsMatchReference) {
+    TRN_REQUIRE_VULKAN();
+    auto dut = default_registry().create("vulkan");
+    const PaddedGray map = textured_image(301, 207, 74, 2);
+    vk::MapPlacement p = as_vulkan(*dut).map_placement();
+    p.band_quads = 301 * 50;  // 206 quad rows in 5 bands
+    as_vulkan(*dut).set_map_placement(p);
+    const MapHandle quads = dut->upload_map(map.view());
+    EXPECT_TRUE(as_vulkan(quads).quads);
+    EXPECT_EQ(as_vulkan(quads).chunks.size(), 5u);
+    matches_reference(*dut, map);
+
+    p.band_quads = 301 * 20;   // 11 quad bands: too many, so bytes
+    p.band_bytes = (301 * 40 + 1) & ~std::size_t(3);  // 39 rows + 1 overlap per band: 6 bands
+    as_vulkan(*dut).set_map_placement(p);
+    const MapHandle bytes = dut->upload_map(map.view());
+    EXPECT_FALSE(as_vulkan(bytes).quads);
+    EXPECT_EQ(as_vulkan(bytes).chunks.size(), 6u);
+    matches_reference(*dut, map);
+
+    p.band_bytes = (301 * 20) & ~std::size_t(3);  // 11 byte bands: more than the shader has
+    as_vulkan(*dut).set_map_placement(p);
+    try {
+        dut->upload_map(map.view());
+        FAIL() << "no error for a map that needs too many bands";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("needs 11 bands"), std::string::npos) << e.what();
+    }
+}
+
+// 72 Mpx: its quads (288 MB) exceed the budget, so the device copy is the bytes layout (72 MB);
+// on lavapipe device memory is host memory, so the process grows by about that.
+TEST(VulkanMapMemory, LargeMapTakesAboutOneBytePerPixel) {
+    TRN_REQUIRE_VULKAN();
+    auto dut = default_registry().create("vulkan");
+    const int w = 9000, h = 8000;
+    const std::vector<std::uint8_t> px = plain_map(w, h);
+    MapHandle map;
+    const auto growth = peak_rss_growth([&] { map = dut->upload_map({px.data(), w, h, w}); });
+    if (!growth) GTEST_SKIP() << "this kernel cannot reset the peak RSS (/proc/self/clear_refs)";
+    EXPECT_FALSE(as_vulkan(map).quads);
+    const double bytes = double(w) * h;
+    if (dut->info().type == "cpu") {  // elsewhere the map lives in device memory
+        EXPECT_GT(double(*growth), 0.5 * bytes);
+        EXPECT_LT(double(*growth), 2.0 * bytes) << "grew by " << *growth / 1e6 << " MB for a " << bytes / 1e6 << " MB map";
+    }
+}
+
+// Staging path: the device copy plus one band's staging copy, not plus the whole map's.
+TEST(VulkanMapMemory, StagingHoldsOneBandAtATime) {
+    TRN_REQUIRE_VULKAN();
+    auto dut = [] {
+        ScopedEnv env("TRN_VULKAN_FORCE_STAGING", "1");
+        return default_registry().create("vulkan");
+    }();
+    const int w = 6000, h = 6000;
+    vk::MapPlacement p = as_vulkan(*dut).map_placement();
+    p.quad_budget = 0;                                          // bytes layout,
+    p.band_bytes = (std::size_t(w) * 1501) & ~std::size_t(3);  // 1500 rows + 1 overlap: 4 bands of 9 MB
+    as_vulkan(*dut).set_map_placement(p);
+    const std::vector<std::uint8_t> px = plain_map(w, h);
+    MapHandle map;
+    const auto growth = peak_rss_growth([&] { map = dut->upload_map({px.data(), w, h, w}); });
+    if (!growth) GTEST_SKIP() << "this kernel cannot reset the peak RSS (/proc/self/clear_refs)";
+    EXPECT_EQ(as_vulkan(map).chunks.size(), 4u);
+    const double bytes = double(w) * h;
+    if (dut->info().type == "cpu") {
+        EXPECT_LT(double(*growth), 1.5 * bytes) << "grew by " << *growth / 1e6 << " MB for a " << bytes / 1e6 << " MB map";
+    }
+}
+
+}  // namespace
+}  // namespace trn::test
