@@ -9,6 +9,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "filter_model_options.hpp"
 #include "progress.hpp"
 #include "trn/error.hpp"
 #include "trn/filter/backend_choice.hpp"
@@ -28,6 +29,7 @@ struct DemoArgs {
     int map_year = 2008, flight_year = 2010;
     std::uint64_t seed = 1;
     bool no_plots = false;
+    FilterModelArgs model;
 };
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
@@ -39,6 +41,7 @@ void progress_bar(std::size_t done, std::size_t total) { draw_progress(done, tot
 void demo(const DemoArgs& a) {
     namespace fs = std::filesystem;
     const auto t0 = std::chrono::steady_clock::now();
+    check_filter_model_options(a.model);
     const sim::Scenario& preset = sim::find_scenario(a.scenario);
     if (!(a.distance_km > 0)) throw Error("--distance-km must be > 0");
 
@@ -84,6 +87,7 @@ void demo(const DemoArgs& a) {
     filter::FilterConfig cfg;  // the dissertation's choices: KLD sampling, logistic:0.2
     cfg.metres_per_pixel = map.metres_per_pixel;
     cfg.seed = a.seed;
+    apply_filter_model_options(a.model, cfg);
     filter::ParticleFilter pf(scorer, cfg);
     const filter::LocalizationResult result = filter::run_localization(source, pf, progress_bar);
 
@@ -94,13 +98,13 @@ void demo(const DemoArgs& a) {
                                {{"backend", backend->info().name}, {"conversion", cfg.conversion.to_string()},
                                 {"sampling", filter::to_string(cfg.sampling)}, {"scenario", preset.name},
                                 {"scoring_density", a.sparse < 1 ? "random " + std::to_string(a.sparse) : "dense"}},
-                               {{"seed", static_cast<double>(a.seed)}, {"filter_rate_hz", preset.fps / stride},
+                               filter::with_lock_numbers(result.summary, {{"seed", static_cast<double>(a.seed)}, {"filter_rate_hz", preset.fps / stride},
                                 {"map_year", static_cast<double>(a.map_year)},
-                                {"template_width", static_cast<double>(a.template_width)}, {"flight_year", static_cast<double>(a.flight_year)}});
+                                {"template_width", static_cast<double>(a.template_width)}, {"flight_year", static_cast<double>(a.flight_year)}}));
     std::cout << "DPC-PFL demo: " << preset.name << ", " << a.distance_km << " km at " << preset.altitude_m << " m, map "
               << a.flight_year - a.map_year << " years older than the flight, backend " << backend->info().name << ", seed " << a.seed
               << "\n"
-              << filter::format_summary(result.summary) << "summary JSON: " << out << "/summary.json\nper-step CSV: " << out
+              << filter::format_summary(result.summary) << filter::format_lock_summary(result.summary) << "summary JSON: " << out << "/summary.json\nper-step CSV: " << out
               << "/localization.csv\n";
     if (!a.no_plots) {
         const filter::PlotFiles plots = filter::plot_run(out, result.rows, result.summary, map.image.view(), map.metres_per_pixel, preset.name);
@@ -125,6 +129,7 @@ void add_demo_command(CLI::App& app) {
     cmd->add_option("--seed", a->seed, "Seed of map, flight and filter")->capture_default_str();
     cmd->add_option("--out", a->out, "Output folder (default: <temp>/trnkit-demo)");
     cmd->add_flag("--no-plots", a->no_plots, "Skip the gnuplot step");
+    add_filter_model_options(*cmd, a->model);
     cmd->callback([a] { demo(*a); });
 }
 
