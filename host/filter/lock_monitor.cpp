@@ -1,5 +1,6 @@
 #include "trn/filter/lock_monitor.hpp"
 
+#include <algorithm>
 #include <string>
 
 #include "trn/error.hpp"
@@ -27,6 +28,7 @@ void LockMonitorConfig::validate() const {
     in_range(probe_min_m, 0, 1e5, "probe_min_m");
     in_range(probe_max_m, probe_min_m, 1e5, "probe_max_m");
     in_range(min_contrast, 0, 100, "min_contrast");
+    in_range(confident_contrast, min_contrast, 100, "confident_contrast");
     in_range(static_cast<double>(weak_steps), 1, 1e6, "weak_steps");
     in_range(drift_fraction, 0, 10, "drift_fraction");
     in_range(drift_floor_m, 0, 1e5, "drift_floor_m");
@@ -49,7 +51,7 @@ void LockMonitor::reset(double x, double y, double uncertainty_m) {
     dead_x_ = x, dead_y_ = y;
     since_fix_m_ = 0;
     fix_uncertainty_m_ = uncertainty_m;
-    weak_run_ = cooldown_ = 0;
+    weak_run_ = cooldown_ = losses_since_fix_ = 0;
 }
 
 void LockMonitor::predict(double dx, double dy) {
@@ -80,25 +82,29 @@ LockReport LockMonitor::assess(double best_ncc, std::span<const ParticleScore> p
         r.probe_sd = std::sqrt(std::max(sum2 / n - r.probe_mean * r.probe_mean, 1e-6));
         r.contrast = (best_ncc - r.probe_mean) / r.probe_sd;
         r.weak = r.contrast < config_.min_contrast;
+        r.confident = r.contrast >= config_.confident_contrast;
     }
     r.drift_m = std::hypot(ex - dead_x_, ey - dead_y_) * mpp_;
     r.drift_bound_m = fix_uncertainty_m_ + config_.drift_floor_m + config_.drift_fraction * since_fix_m_;
     r.inconsistent = r.drift_m > r.drift_bound_m;
     weak_run_ = r.weak ? weak_run_ + 1 : 0;
+    if (r.confident) {  // a fix: dead reckoning restarts here
+        dead_x_ = ex, dead_y_ = ey;
+        since_fix_m_ = 0;
+        fix_uncertainty_m_ = 0;
+        weak_run_ = losses_since_fix_ = 0;
+        return r;
+    }
     if (cooldown_ > 0) {
         --cooldown_;
         return r;  // the widened search is still settling: no verdict
     }
     if (r.inconsistent || weak_run_ >= config_.weak_steps) {
         r.lost = true;
+        r.widen_radius_m = std::min(config_.widen_radius_m, r.drift_bound_m * std::ldexp(1.0, static_cast<int>(std::min<std::size_t>(losses_since_fix_, 20))));
+        ++losses_since_fix_;
         weak_run_ = 0;
         cooldown_ = config_.cooldown_steps;
-        return r;  // dead reckoning stays: it is where the search is widened
-    }
-    if (!r.weak && std::isfinite(r.contrast)) {  // a confident, consistent fix: dead reckoning restarts here
-        dead_x_ = ex, dead_y_ = ey;
-        since_fix_m_ = 0;
-        fix_uncertainty_m_ = 0;
     }
     return r;
 }

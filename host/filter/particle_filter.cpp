@@ -261,17 +261,19 @@ void ParticleFilter::check_lock(const StepMotion& m, StepReport& r) {
     counters_.weak_contrast_steps += r.lock.weak;
     counters_.odometry_inconsistent_steps += r.lock.inconsistent;
     if (!r.lock.lost) return;
-    // Widen the search: re-scatter a share of the particles around the dead-reckoned position. They
+    // Widen the search around the dead-reckoned position: every particle when the track left the
+    // odometry (the lock is elsewhere), a share when only the contrast is weak. Re-scattered ones
     // get the kept particles' mean weight, so the next resampling draws them as often as the rest.
     ++counters_.lock_lost_events;
     const std::size_t n = particles_.size();
-    const auto moved = static_cast<std::size_t>(std::lround(config_.lock.widen_fraction * static_cast<double>(n)));
-    if (moved == 0) return;
+    const double share = r.lock.inconsistent ? 1.0 : config_.lock.widen_fraction;
+    const auto moved = static_cast<std::size_t>(std::lround(share * static_cast<double>(n)));
+    if (moved == 0 || !(r.lock.widen_radius_m > 0)) return;
     const std::size_t keep = n - moved;
     double kept_weight = 0;
     for (std::size_t i = 0; i < keep; ++i) kept_weight += particles_[i].weight;
     const double w = keep > 0 && kept_weight > 0 ? kept_weight / static_cast<double>(keep) : 1.0;
-    scatter(lock_.dead_reckoning_x(), lock_.dead_reckoning_y(), m.heading_rad, m.have_heading, config_.lock.widen_radius_m, moved, keep);
+    scatter(lock_.dead_reckoning_x(), lock_.dead_reckoning_y(), m.heading_rad, m.have_heading, r.lock.widen_radius_m, moved, keep);
     for (std::size_t i = keep; i < n; ++i) particles_[i].weight = w;
     scores_.clear();  // no longer one score per particle
 }

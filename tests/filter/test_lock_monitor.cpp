@@ -71,13 +71,29 @@ TEST(LockMonitor, LeavingDeadReckoningIsInconsistentAndLost) {
         EXPECT_FALSE(m.assess(0.8, random_places, 10.0 * (i + 1), 0).lost);
     }
     m.predict(10, 0);
-    // The estimate jumps 200 m north while the odometry says 10 m east: far beyond 40 m + 15 %.
-    const LockReport r = m.assess(0.8, random_places, 110, -200);
+    // The estimate jumps 200 m north while the odometry says 10 m east: far beyond 40 m + 15 %,
+    // and its score is good but not outstanding.
+    const LockReport r = m.assess(0.55, random_places, 110, -200);
+    EXPECT_FALSE(r.weak);
+    EXPECT_FALSE(r.confident);
     EXPECT_TRUE(r.inconsistent);
     EXPECT_TRUE(r.lost);
     EXPECT_NEAR(r.drift_m, 200, 1e-9);
+    EXPECT_NEAR(r.widen_radius_m, 40 + 0.15 * 10, 1e-9);  // no wider than the odometry's drift bound
     EXPECT_NEAR(m.dead_reckoning_x(), 110, 1e-9);  // the wider search goes where the odometry says
     EXPECT_NEAR(m.dead_reckoning_y(), 0, 1e-9);
+}
+
+TEST(LockMonitor, AnOutstandingMatchFarFromDeadReckoningIsANewFix) {
+    // How a wrong start is left behind: the true place, once found, stands out.
+    LockMonitor m(config(), 1.0, 1);
+    m.reset(0, 0, 300);
+    m.predict(10, 0);
+    const LockReport r = m.assess(0.8, probes(0.1, 0.2), 10, -500);
+    EXPECT_TRUE(r.confident);
+    EXPECT_TRUE(r.inconsistent);
+    EXPECT_FALSE(r.lost);
+    EXPECT_NEAR(m.dead_reckoning_y(), -500, 1e-9);
 }
 
 TEST(LockMonitor, TooFewProbesOnTheMapGiveNoContrastVerdict) {

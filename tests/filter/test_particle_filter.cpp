@@ -30,11 +30,15 @@ FilterConfig small_config(std::uint64_t seed = 1) {
     return c;
 }
 
-LocalizationResult run(const FilterConfig& cfg, double seconds, std::uint64_t flight_seed = 5) {
+LocalizationResult run_flight(const FilterConfig& cfg, const sim::FlightConfig& flight, double start_x = NAN, double start_y = NAN) {
     Rig rig;
     ParticleFilter pf(rig.scorer, cfg);
-    SimulatedFlightSource src(test_world().world, short_flight(seconds, flight_seed), 10);
-    return run_localization(src, pf);
+    SimulatedFlightSource src(test_world().world, flight, 10);
+    return run_localization(src, pf, {}, start_x, start_y);
+}
+
+LocalizationResult run(const FilterConfig& cfg, double seconds, std::uint64_t flight_seed = 5) {
+    return run_flight(cfg, short_flight(seconds, flight_seed));
 }
 
 TEST(ParticleFilter, TracksTheAircraftBetterThanOdometry) {
@@ -44,6 +48,44 @@ TEST(ParticleFilter, TracksTheAircraftBetterThanOdometry) {
     EXPECT_LT(r.summary.filter_final_error_m, 0.5 * r.summary.odometry_final_error_m);
     EXPECT_LT(r.summary.filter_mean_error_m, r.summary.odometry_mean_error_m);
     EXPECT_EQ(r.summary.counters.reinitialisations, 0u);
+    EXPECT_EQ(r.summary.counters.lock_lost_events, 0u) << "a good lock must not be declared lost";
+}
+
+TEST(ParticleFilter, TracksACrabbingClimbingFlightBetterThanOdometry) {
+    // FR-200-wind: the camera points up to 30 degrees off the course, the altitude swings +-30 %
+    // and the template scale comes from a noisy barometer.
+    sim::FlightConfig flight = short_flight(20);
+    flight.scenario = sim::find_scenario("FR-200-wind");
+    const LocalizationResult r = run_flight(small_config(), flight);
+    ASSERT_EQ(r.rows.size(), 100u);
+    EXPECT_LT(r.summary.filter_mean_error_m, 0.5 * r.summary.odometry_mean_error_m);
+    EXPECT_LT(r.rows.back().error_m, 10.0);
+    // The literal model (distance along the heading) is pulled off the track by the crab.
+    FilterConfig literal = small_config();
+    literal.motion.along_heading = true;
+    const LocalizationResult l = run_flight(literal, flight);
+    EXPECT_LT(r.summary.filter_mean_error_m, l.summary.filter_mean_error_m);
+}
+
+TEST(ParticleFilter, NoticesAConfidentWrongStartAndFindsTheAircraft) {
+    // Started ~180 m from the truth with a tight prior: the filter is sure of the wrong place.
+    sim::FlightConfig flight = short_flight(25);
+    sim::FlightConfig quick = flight;
+    quick.render_images = false;
+    sim::FlightSimulator truth(test_world().world, quick);
+    sim::FlightFrame first;
+    ASSERT_TRUE(truth.next(first));
+    const double cx = test_world().map.image.width / 2.0, cy = test_world().map.image.height / 2.0;
+    const double towards = std::atan2(cy - first.truth.map_y, cx - first.truth.map_x);
+    const double sx = first.truth.map_x + 180 * std::cos(towards), sy = first.truth.map_y + 180 * std::sin(towards);
+    FilterConfig cfg = small_config();
+    const LocalizationResult watched = run_flight(cfg, flight, sx, sy);
+    EXPECT_GE(watched.summary.counters.lock_lost_events, 1u);
+    EXPECT_LT(watched.rows.back().error_m, 15.0) << "the wider search should find the aircraft";
+    cfg.lock.enabled = false;
+    const LocalizationResult blind = run_flight(cfg, flight, sx, sy);
+    EXPECT_EQ(blind.summary.counters.lock_lost_events, 0u);
+    EXPECT_GT(blind.rows.back().error_m, 50.0) << "without the monitor the wrong lock should persist";
 }
 
 TEST(ParticleFilter, FixedSeedReproducesTheRunExactly) {

@@ -5,11 +5,20 @@
 //     contrast = (best NCC - probes' mean) / probes' sd. A true lock stands out; a wrong one is
 //     one more local maximum of similar texture. Weak = contrast below `min_contrast`.
 //   - odometry consistency: the estimate against dead reckoning (odometry increments) from the
-//     last confident fix; leaving the odometry's plausible drift (`drift_fraction` of the
+//     last confident fix (contrast >= `confident_contrast`; the start counts as a fix within the
+//     initialisation radius); leaving the odometry's plausible drift (`drift_fraction` of the
 //     distance since, plus `drift_floor_m`, plus the fix's own uncertainty) is inconsistent.
-// Lost = inconsistent, or weak for `weak_steps` steps in a row. The filter then re-scatters
-// `widen_fraction` of its particles within `widen_radius_m` of the dead-reckoned position and the
-// monitor waits `cooldown_steps` before its next verdict. Every event is counted.
+// Lost = inconsistent without being confident, or weak for `weak_steps` steps in a row. A
+// confident step is a new fix even when it is far from dead reckoning: a match that stands out
+// that much outranks drifting odometry (that is how a wrong start is left behind). The filter then widens the search
+// around the dead-reckoned position, within the drift bound (at most `widen_radius_m`): when the
+// track is inconsistent every particle is re-scattered there (the lock is on the wrong place);
+// when only the contrast is weak, `widen_fraction` of them (the lock may be right on poor
+// texture). The monitor then waits `cooldown_steps` before its next verdict. Every event is counted.
+// The first widening stays within the odometry's drift bound on purpose: on weak texture a wider
+// disc always holds some other place that scores better than the true one. Each further loss
+// before the next confident fix doubles the radius (up to `widen_radius_m`), so a lock that is
+// really elsewhere is still found.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -25,11 +34,12 @@ struct LockMonitorConfig {
     std::size_t probes = 48;            // random places scored per step (0: no contrast evidence)
     double probe_min_m = 150, probe_max_m = 600;  // ring around the estimate where probes go
     double min_contrast = 3.0;          // best NCC must exceed the probes' mean by this many sd
+    double confident_contrast = 5.5;    // a step this distinct is a fix: dead reckoning restarts there
     std::size_t weak_steps = 8;         // consecutive weak steps that make "lost"
     double drift_fraction = 0.15;       // allowed departure from dead reckoning per metre flown
     double drift_floor_m = 40;          // ... plus this
-    double widen_fraction = 0.5;        // share of the particles re-scattered when lost
-    double widen_radius_m = 300;        // ... uniformly within this radius of dead reckoning
+    double widen_fraction = 0.5;        // share of the particles re-scattered when lost on weak contrast
+    double widen_radius_m = 300;        // most radius of the wider search around dead reckoning
     std::size_t cooldown_steps = 10;    // steps after a widening without a verdict
 
     void validate() const;  // throws trn::Error naming the field and its range
@@ -38,7 +48,8 @@ struct LockMonitorConfig {
 struct LockReport {
     double best_ncc = NAN, probe_mean = NAN, probe_sd = NAN, contrast = NAN;
     double drift_m = NAN, drift_bound_m = NAN;  // |estimate - dead reckoning| and its bound
-    bool weak = false, inconsistent = false, lost = false;
+    bool weak = false, confident = false, inconsistent = false, lost = false;
+    double widen_radius_m = 0;  // when lost: re-scatter within this radius of dead reckoning
 };
 
 class LockMonitor {
@@ -65,7 +76,7 @@ private:
     double mpp_;
     std::uint64_t rng_;
     double dead_x_ = 0, dead_y_ = 0, since_fix_m_ = 0, fix_uncertainty_m_ = 0;
-    std::size_t weak_run_ = 0, cooldown_ = 0;
+    std::size_t weak_run_ = 0, cooldown_ = 0, losses_since_fix_ = 0;
 };
 
 }  // namespace trn::filter
