@@ -23,7 +23,7 @@ namespace trn::cli {
 namespace {
 
 struct DemoArgs {
-    std::string scenario = "FR-200", backend = "fastest", out;
+    std::string scenario = "FR-200-wind", backend = "fastest", out;  // crab, climbs, barometer: scenario.hpp
     double distance_km = 2.0, rate_hz = 5, sparse = 1;
     int template_width = 160;
     int map_year = 2008, flight_year = 2010;
@@ -50,7 +50,7 @@ void demo(const DemoArgs& a) {
     mo.style = preset.terrain;
     mo.seed = a.seed;
     mo.year = a.map_year;
-    const double footprint = preset.altitude_m / sim::Camera{}.focal_px() * 400 * 2;
+    const double footprint = preset.max_altitude_m() / sim::Camera{}.focal_px() * 400 * 2;
     mo.width_m = mo.height_m = std::ceil((preset.nominal_size_m * 1.1 + footprint + 100) / 100) * 100;
     std::cerr << "generating the " << sim::to_string(mo.style) << " map (" << mo.width_m << " m square, " << a.map_year
               << ") and the world " << a.flight_year - a.map_year << " years later\n";
