@@ -29,6 +29,7 @@ void LockMonitorConfig::validate() const {
     in_range(probe_max_m, probe_min_m, 1e5, "probe_max_m");
     in_range(min_contrast, 0, 100, "min_contrast");
     in_range(confident_contrast, min_contrast, 100, "confident_contrast");
+    in_range(converged_m, 0, 1e5, "converged_m");
     in_range(static_cast<double>(weak_steps), 1, 1e6, "weak_steps");
     in_range(drift_fraction, 0, 10, "drift_fraction");
     in_range(drift_floor_m, 0, 1e5, "drift_floor_m");
@@ -51,7 +52,7 @@ void LockMonitor::reset(double x, double y, double uncertainty_m) {
     dead_x_ = x, dead_y_ = y;
     since_fix_m_ = 0;
     fix_uncertainty_m_ = uncertainty_m;
-    weak_run_ = cooldown_ = losses_since_fix_ = 0;
+    weak_run_ = cooldown_ = 0;
 }
 
 void LockMonitor::predict(double dx, double dy) {
@@ -70,7 +71,8 @@ std::size_t LockMonitor::add_probes(double x, double y, double yaw, std::vector<
     return config_.probes;
 }
 
-LockReport LockMonitor::assess(double best_ncc, std::span<const ParticleScore> probe_scores, double ex, double ey) {
+LockReport LockMonitor::assess(double best_ncc, std::span<const ParticleScore> probe_scores, double ex, double ey,
+                               double spread_m) {
     LockReport r;
     if (!config_.enabled) return r;
     r.best_ncc = best_ncc;
@@ -82,17 +84,18 @@ LockReport LockMonitor::assess(double best_ncc, std::span<const ParticleScore> p
         r.probe_sd = std::sqrt(std::max(sum2 / n - r.probe_mean * r.probe_mean, 1e-6));
         r.contrast = (best_ncc - r.probe_mean) / r.probe_sd;
         r.weak = r.contrast < config_.min_contrast;
-        r.confident = r.contrast >= config_.confident_contrast;
     }
+    const bool converged = spread_m <= config_.converged_m;
+    r.confident = converged && r.contrast >= config_.confident_contrast;
     r.drift_m = std::hypot(ex - dead_x_, ey - dead_y_) * mpp_;
     r.drift_bound_m = fix_uncertainty_m_ + config_.drift_floor_m + config_.drift_fraction * since_fix_m_;
-    r.inconsistent = r.drift_m > r.drift_bound_m;
+    r.inconsistent = converged && r.drift_m > r.drift_bound_m;
     weak_run_ = r.weak ? weak_run_ + 1 : 0;
     if (r.confident) {  // a fix: dead reckoning restarts here
         dead_x_ = ex, dead_y_ = ey;
         since_fix_m_ = 0;
         fix_uncertainty_m_ = 0;
-        weak_run_ = losses_since_fix_ = 0;
+        weak_run_ = 0;
         return r;
     }
     if (cooldown_ > 0) {
@@ -101,8 +104,7 @@ LockReport LockMonitor::assess(double best_ncc, std::span<const ParticleScore> p
     }
     if (r.inconsistent || weak_run_ >= config_.weak_steps) {
         r.lost = true;
-        r.widen_radius_m = std::min(config_.widen_radius_m, r.drift_bound_m * std::ldexp(1.0, static_cast<int>(std::min<std::size_t>(losses_since_fix_, 20))));
-        ++losses_since_fix_;
+        r.widen_radius_m = std::min(config_.widen_radius_m, r.drift_bound_m);
         weak_run_ = 0;
         cooldown_ = config_.cooldown_steps;
     }

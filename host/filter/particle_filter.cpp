@@ -215,6 +215,9 @@ void ParticleFilter::update_estimate() {
     }
     if (sw > 0) {
         estimate_.x = sx / sw, estimate_.y = sy / sw, estimate_.yaw = std::atan2(ss, sc);
+        double s2 = 0;
+        for (const Particle& p : particles_) s2 += p.weight * ((p.x - estimate_.x) * (p.x - estimate_.x) + (p.y - estimate_.y) * (p.y - estimate_.y));
+        estimate_.spread_px = std::sqrt(s2 / sw);
     }
 }
 
@@ -257,17 +260,16 @@ StepReport ParticleFilter::step(const FilterInput& in) {
 }
 
 void ParticleFilter::check_lock(const StepMotion& m, StepReport& r) {
-    r.lock = lock_.assess(estimate_.best_ncc, probe_scores_, estimate_.x, estimate_.y);
+    r.lock = lock_.assess(estimate_.best_ncc, probe_scores_, estimate_.x, estimate_.y, estimate_.spread_px * config_.metres_per_pixel);
     counters_.weak_contrast_steps += r.lock.weak;
     counters_.odometry_inconsistent_steps += r.lock.inconsistent;
     if (!r.lock.lost) return;
-    // Widen the search around the dead-reckoned position: every particle when the track left the
-    // odometry (the lock is elsewhere), a share when only the contrast is weak. Re-scattered ones
-    // get the kept particles' mean weight, so the next resampling draws them as often as the rest.
+    // Widen the search: a share of the particles re-scattered around the dead-reckoned position;
+    // the rest keep the current hypothesis, which wins again at once if it was right. Re-scattered
+    // ones get the kept particles' mean weight, so the next resampling draws them as often.
     ++counters_.lock_lost_events;
     const std::size_t n = particles_.size();
-    const double share = r.lock.inconsistent ? 1.0 : config_.lock.widen_fraction;
-    const auto moved = static_cast<std::size_t>(std::lround(share * static_cast<double>(n)));
+    const auto moved = static_cast<std::size_t>(std::lround(config_.lock.widen_fraction * static_cast<double>(n)));
     if (moved == 0 || !(r.lock.widen_radius_m > 0)) return;
     const std::size_t keep = n - moved;
     double kept_weight = 0;

@@ -45,21 +45,21 @@ TEST(LockMonitor, AStandOutScoreIsConfidentAMediocreOneIsWeakAndThenLost) {
     LockMonitor m(config(), 1.0, 1);
     m.reset(0, 0, 300);
     const auto random_places = probes(0.1, 0.2);
-    LockReport r = m.assess(0.8, random_places, 0, 0);
+    LockReport r = m.assess(0.8, random_places, 0, 0, 0);
     EXPECT_FALSE(r.weak);
     EXPECT_GT(r.contrast, 3);
     EXPECT_FALSE(r.lost);
     // The best particle scores like a random place: weak, and lost after weak_steps in a row.
     for (int i = 0; i < 2; ++i) {
-        r = m.assess(0.25, random_places, 0, 0);
+        r = m.assess(0.25, random_places, 0, 0, 0);
         EXPECT_TRUE(r.weak);
         EXPECT_FALSE(r.lost) << i;
     }
-    r = m.assess(0.25, random_places, 0, 0);
+    r = m.assess(0.25, random_places, 0, 0, 0);
     EXPECT_TRUE(r.lost);
     // Cooldown: no verdict for two steps, even though still weak.
-    EXPECT_FALSE(m.assess(0.25, random_places, 0, 0).lost);
-    EXPECT_FALSE(m.assess(0.25, random_places, 0, 0).lost);
+    EXPECT_FALSE(m.assess(0.25, random_places, 0, 0, 0).lost);
+    EXPECT_FALSE(m.assess(0.25, random_places, 0, 0, 0).lost);
 }
 
 TEST(LockMonitor, LeavingDeadReckoningIsInconsistentAndLost) {
@@ -68,12 +68,12 @@ TEST(LockMonitor, LeavingDeadReckoningIsInconsistentAndLost) {
     const auto random_places = probes(0.1, 0.2);
     for (int i = 0; i < 10; ++i) {  // 100 m east, tracked with confidence
         m.predict(10, 0);
-        EXPECT_FALSE(m.assess(0.8, random_places, 10.0 * (i + 1), 0).lost);
+        EXPECT_FALSE(m.assess(0.8, random_places, 10.0 * (i + 1), 0, 0).lost);
     }
     m.predict(10, 0);
     // The estimate jumps 200 m north while the odometry says 10 m east: far beyond 40 m + 15 %,
     // and its score is good but not outstanding.
-    const LockReport r = m.assess(0.55, random_places, 110, -200);
+    const LockReport r = m.assess(0.55, random_places, 110, -200, 0);
     EXPECT_FALSE(r.weak);
     EXPECT_FALSE(r.confident);
     EXPECT_TRUE(r.inconsistent);
@@ -89,11 +89,23 @@ TEST(LockMonitor, AnOutstandingMatchFarFromDeadReckoningIsANewFix) {
     LockMonitor m(config(), 1.0, 1);
     m.reset(0, 0, 300);
     m.predict(10, 0);
-    const LockReport r = m.assess(0.8, probes(0.1, 0.2), 10, -500);
+    const LockReport r = m.assess(0.8, probes(0.1, 0.2), 10, -500, 0);
     EXPECT_TRUE(r.confident);
     EXPECT_TRUE(r.inconsistent);
     EXPECT_FALSE(r.lost);
     EXPECT_NEAR(m.dead_reckoning_y(), -500, 1e-9);
+}
+
+TEST(LockMonitor, WhileTheCloudIsStillSpreadThereIsNoFixAndNoInconsistency) {
+    // Converging from a wide prior, the weighted mean wanders: it must neither anchor dead
+    // reckoning nor count as leaving it.
+    LockMonitor m(config(), 1.0, 1);
+    m.reset(0, 0, 0);
+    const LockReport r = m.assess(0.8, probes(0.1, 0.2), 0, -500, 120);
+    EXPECT_FALSE(r.confident);
+    EXPECT_FALSE(r.inconsistent);
+    EXPECT_FALSE(r.lost);
+    EXPECT_NEAR(m.dead_reckoning_y(), 0, 1e-9);
 }
 
 TEST(LockMonitor, TooFewProbesOnTheMapGiveNoContrastVerdict) {
@@ -102,7 +114,7 @@ TEST(LockMonitor, TooFewProbesOnTheMapGiveNoContrastVerdict) {
     auto few = probes(0.1, 0.2, 48);
     for (std::size_t i = 5; i < few.size(); ++i) few[i].flags = kTooFewSamples;  // off the map
     for (int i = 0; i < 5; ++i) {
-        const LockReport r = m.assess(0.05, few, 0, 0);
+        const LockReport r = m.assess(0.05, few, 0, 0, 0);
         EXPECT_TRUE(std::isnan(r.contrast));
         EXPECT_FALSE(r.weak);
         EXPECT_FALSE(r.lost);

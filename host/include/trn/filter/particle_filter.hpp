@@ -85,6 +85,7 @@ struct Estimate {
     double x = 0, y = 0, yaw = 0;  // weighted mean (circular for yaw)
     double best_x = 0, best_y = 0, best_yaw = 0;
     double best_ncc = 0;
+    double spread_px = 0;  // weighted rms distance of the particles from (x, y)
 };
 
 struct StepReport {
