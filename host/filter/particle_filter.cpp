@@ -59,7 +59,7 @@ void FilterConfig::validate() const {
 ParticleFilter::ParticleFilter(ParticleScorer& scorer, const FilterConfig& config)
     : scorer_(scorer),
       config_(config),
-      lock_((config.validate(), config.lock), config.metres_per_pixel, config.seed),
+      lock_((config.validate(), config.lock), config.metres_per_pixel, config.seed),  // validated before anything is built
       rng_(mix64(config.seed ^ 0x5DEECE66Dull)) {}
 
 double ParticleFilter::uniform() {

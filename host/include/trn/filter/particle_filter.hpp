@@ -17,7 +17,8 @@
 //   3. Weight = conversion(NCC) (eqs. 2.16-2.21); estimate = weighted mean of x, y and circular
 //      weighted mean of yaw; the best particle is reported too.
 //   4. The lock monitor compares the best score with the probes' and the track with the odometry;
-//      when it says lost, part of the particles are re-scattered widely (counted).
+//      when it says lost, half the particles are re-scattered around the dead-reckoned position
+//      within the odometry's drift bound (counted).
 //
 // Bad input is handled and counted, never fatal:
 //   - lost odometry (a non-finite delta): the last good per-step displacement is reused (constant
