@@ -9,6 +9,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "filter_model_options.hpp"
 #include "options.hpp"
 #include "progress.hpp"
 #include "trn/error.hpp"
@@ -24,12 +25,13 @@ namespace trn::cli {
 namespace {
 
 struct DemoArgs {
-    std::string scenario = "FR-200", backend = "fastest", out;
+    std::string scenario = "FR-200-wind", backend = "fastest", out;  // crab, climbs, barometer: scenario.hpp
     double distance_km = 2.0, rate_hz = 5, sparse = 1;
     int template_width = 160;
     int map_year = 2008, flight_year = 2010;
     std::uint64_t seed = 1;
     bool no_plots = false, force = false;
+    FilterModelArgs model;
 };
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
@@ -41,6 +43,7 @@ void progress_bar(std::size_t done, std::size_t total) { draw_progress(done, tot
 void demo(const DemoArgs& a) {
     namespace fs = std::filesystem;
     const auto t0 = std::chrono::steady_clock::now();
+    check_filter_model_options(a.model);
     const sim::Scenario& preset = sim::find_scenario(a.scenario);
     if (!(a.distance_km > 0)) throw Error("--distance-km must be > 0");
     const std::string out = a.out.empty() ? (fs::temp_directory_path() / "trnkit-demo").string() : a.out;
@@ -51,7 +54,7 @@ void demo(const DemoArgs& a) {
     mo.style = preset.terrain;
     mo.seed = a.seed;
     mo.year = a.map_year;
-    const double footprint = preset.altitude_m / sim::Camera{}.focal_px() * 400 * 2;
+    const double footprint = preset.max_altitude_m() / sim::Camera{}.focal_px() * 400 * 2;
     mo.width_m = mo.height_m = std::ceil((preset.nominal_size_m * 1.1 + footprint + 100) / 100) * 100;
     std::cerr << "generating the " << sim::to_string(mo.style) << " map (" << mo.width_m << " m square, " << a.map_year
               << ") and the world " << a.flight_year - a.map_year << " years later\n";
@@ -88,6 +91,7 @@ void demo(const DemoArgs& a) {
     filter::FilterConfig cfg;  // the dissertation's choices: KLD sampling, logistic:0.2
     cfg.metres_per_pixel = map.metres_per_pixel;
     cfg.seed = a.seed;
+    apply_filter_model_options(a.model, cfg);
     filter::ParticleFilter pf(scorer, cfg);
     const filter::LocalizationResult result = filter::run_localization(source, pf, progress_bar);
 
@@ -97,13 +101,13 @@ void demo(const DemoArgs& a) {
                                {{"backend", backend->info().name}, {"conversion", cfg.conversion.to_string()},
                                 {"sampling", filter::to_string(cfg.sampling)}, {"scenario", preset.name},
                                 {"scoring_density", a.sparse < 1 ? "random " + std::to_string(a.sparse) : "dense"}},
-                               {{"seed", static_cast<double>(a.seed)}, {"filter_rate_hz", preset.fps / stride},
+                               filter::with_lock_numbers(result.summary, {{"seed", static_cast<double>(a.seed)}, {"filter_rate_hz", preset.fps / stride},
                                 {"map_year", static_cast<double>(a.map_year)},
-                                {"template_width", static_cast<double>(a.template_width)}, {"flight_year", static_cast<double>(a.flight_year)}});
+                                {"template_width", static_cast<double>(a.template_width)}, {"flight_year", static_cast<double>(a.flight_year)}}));
     std::cout << "DPC-PFL demo: " << preset.name << ", " << a.distance_km << " km at " << preset.altitude_m << " m, map "
               << a.flight_year - a.map_year << " years older than the flight, backend " << backend->info().name << ", seed " << a.seed
               << "\n"
-              << filter::format_summary(result.summary) << "summary JSON: " << out << "/summary.json\nper-step CSV: " << out
+              << filter::format_summary(result.summary) << filter::format_lock_summary(result.summary) << "summary JSON: " << out << "/summary.json\nper-step CSV: " << out
               << "/localization.csv\n";
     if (!a.no_plots) {
         const filter::PlotFiles plots = filter::plot_run(out, result.rows, result.summary, map.image.view(), map.metres_per_pixel, preset.name);
@@ -131,6 +135,7 @@ void add_demo_command(CLI::App& app) {
     cmd->add_option("--out", a->out, "Output folder (default: <temp>/trnkit-demo)");
     cmd->add_flag("--no-plots", a->no_plots, "Skip the gnuplot step");
     cmd->add_flag("--force", a->force, "Write into a non-empty folder that is not an earlier output of demo");
+    add_filter_model_options(*cmd, a->model);
     cmd->callback([a] { demo(*a); });
 }
 

@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "filter_model_options.hpp"
 #include "options.hpp"
 #include "progress.hpp"
 #include "trn/error.hpp"
@@ -28,12 +29,14 @@ struct LocalizeArgs {
     std::size_t particles = 1000, min_particles = 100, max_particles = 2000;
     int template_width = 160;
     bool no_plots = false, force = false;
+    FilterModelArgs model;
 };
 
 void progress_bar(std::size_t done, std::size_t total) { draw_progress(done, total, "steps"); }
 
 void localize(const LocalizeArgs& a) {
     namespace fs = std::filesystem;
+    check_filter_model_options(a.model);
     if (!fs::is_directory(a.dataset)) throw Error("--dataset " + a.dataset + ": not a folder");
     if (a.min_particles > a.max_particles)
         throw Error("--min-particles " + std::to_string(a.min_particles) + " exceeds --max-particles " + std::to_string(a.max_particles));
@@ -66,6 +69,7 @@ void localize(const LocalizeArgs& a) {
     cfg.min_particles = a.min_particles;
     cfg.max_particles = a.max_particles;
     cfg.seed = a.seed;
+    apply_filter_model_options(a.model, cfg);
     filter::ParticleFilter pf(scorer, cfg);
 
     if (!(a.rate_hz > 0)) throw Error("--rate must be > 0");
@@ -90,9 +94,9 @@ void localize(const LocalizeArgs& a) {
                                {{"backend", backend->info().name}, {"conversion", cfg.conversion.to_string()},
                                 {"sampling", filter::to_string(cfg.sampling)}, {"dataset", a.dataset},
                                 {"scoring_density", a.sparse < 1 ? "random " + std::to_string(a.sparse) : "dense"}},
-                               {{"seed", static_cast<double>(a.seed)}, {"filter_rate_hz", info.fps / stride},
-                                {"template_width", static_cast<double>(a.template_width)}});
-    std::cout << filter::format_summary(result.summary);
+                               filter::with_lock_numbers(result.summary, {{"seed", static_cast<double>(a.seed)}, {"filter_rate_hz", info.fps / stride},
+                                {"template_width", static_cast<double>(a.template_width)}}));
+    std::cout << filter::format_summary(result.summary) << filter::format_lock_summary(result.summary);
     std::cout << "per-step CSV: " << out << "/localization.csv\nsummary JSON: " << out << "/summary.json\n";
     if (!a.no_plots) {
         const filter::PlotFiles plots = filter::plot_run(out, result.rows, result.summary, map.image.view(), mpp, info.scenario);
@@ -127,6 +131,7 @@ void add_localize_command(CLI::App& app) {
     cmd->add_option("--out", a->out, "Output folder (default: DATASET/localize)");
     cmd->add_flag("--no-plots", a->no_plots, "Skip the gnuplot step");
     cmd->add_flag("--force", a->force, "Write into a non-empty folder that is not an earlier output of localize");
+    add_filter_model_options(*cmd, a->model);
     cmd->callback([a] { localize(*a); });
 }
 

@@ -142,7 +142,7 @@ bool SimulatedFlightSource::next(FlightSample& s) {
         s.truth_x = f.truth.map_x, s.truth_y = f.truth.map_y, s.truth_yaw = f.truth.yaw_rad;
         s.odometry_east_m = f.odometry_m.x, s.odometry_north_m = f.odometry_m.y;
         s.heading_rad = f.magnetometer_heading_rad;
-        s.map_px_per_camera_px = f.template_scale;
+        s.map_px_per_camera_px = sim::measured_template_scale(f, config_.camera, world_.metres_per_pixel);  // barometric, like a real flight
         sim::RenderOptions r = config_.render;
         r.noise_seed = ((config_.seed * 0x9E3779B97F4A7C15ull) ^ (r.noise_seed + 0x632BE59BD9B4E019ull * (f.index + 1))) | 1;
         const sim::CameraPose pose{f.truth.map_x, f.truth.map_y, f.truth.altitude_m, f.truth.yaw_rad, f.truth.roll_rad, f.truth.pitch_rad};

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 
 #include "trn/error.hpp"
 
@@ -18,6 +19,20 @@ FittedLine fit_line(const std::vector<double>& x, const std::vector<double>& y) 
     if (!(sxx > 0)) return {};
     const double slope = sxy / sxx;
     return {slope, my - slope * mx};
+}
+
+std::map<std::string, double> with_lock_numbers(const LocalizationSummary& s, std::map<std::string, double> numbers) {
+    numbers["lock_lost_events"] = static_cast<double>(s.counters.lock_lost_events);
+    numbers["weak_contrast_steps"] = static_cast<double>(s.counters.weak_contrast_steps);
+    numbers["odometry_inconsistent_steps"] = static_cast<double>(s.counters.odometry_inconsistent_steps);
+    return numbers;
+}
+
+std::string format_lock_summary(const LocalizationSummary& s) {
+    char buf[256];
+    std::snprintf(buf, sizeof buf, "lock monitor: %zu lost (search widened), %zu weak-contrast steps, %zu odometry-inconsistent steps\n",
+                  s.counters.lock_lost_events, s.counters.weak_contrast_steps, s.counters.odometry_inconsistent_steps);
+    return buf;
 }
 
 LocalizationSummary summarise(const std::vector<LocalizationRow>& rows, const FilterCounters& counters, double wall_s) {
@@ -106,6 +121,7 @@ LocalizationResult run_localization(FlightSource& source, ParticleFilter& filter
         row.particles = rep.particles, row.off_map = rep.off_map;
         row.score_ms = rep.score_ms, row.step_ms = step_s * 1000;
         row.odometry_lost = rep.odometry_lost, row.frame_missing = rep.frame_missing, row.reinitialised = rep.reinitialised;
+        row.lock_contrast = rep.lock.contrast, row.lock_drift_m = rep.lock.drift_m, row.lock_lost = rep.lock.lost;
         result.rows.push_back(row);
         if (progress) progress(result.rows.size(), hint);
     }

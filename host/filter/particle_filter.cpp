@@ -45,17 +45,13 @@ void FilterConfig::validate() const {
     auto positive = [](double v, const char* name) {
         if (!(v > 0) || !std::isfinite(v)) throw Error(std::string("filter config: ") + name + " must be > 0");
     };
-    auto non_negative = [](double v, const char* name) {
-        if (!(v >= 0) || !std::isfinite(v)) throw Error(std::string("filter config: ") + name + " must be >= 0");
-    };
     positive(metres_per_pixel, "metres_per_pixel");
     positive(kld_epsilon, "kld_epsilon");
     positive(kld_bin_m, "kld_bin_m");
     positive(init_radius_m, "init_radius_m");
     positive(reinit_radius_m, "reinit_radius_m");
-    non_negative(translation_noise, "translation_noise");
-    non_negative(position_noise_m, "position_noise_m");
-    non_negative(heading_noise_deg, "heading_noise_deg");
+    motion.validate();
+    lock.validate();
     if (!(kld_upper_quantile > 0 && kld_upper_quantile < 1)) throw Error("filter config: kld_upper_quantile must be in (0, 1)");
     if (min_particles < 1) throw Error("filter config: min_particles must be >= 1");
     if (max_particles < min_particles) throw Error("filter config: max_particles must be >= min_particles");
@@ -67,9 +63,10 @@ void FilterConfig::validate() const {
 }
 
 ParticleFilter::ParticleFilter(ParticleScorer& scorer, const FilterConfig& config)
-    : scorer_(scorer), config_(config), rng_(mix64(config.seed ^ 0x5DEECE66Dull)) {
-    config_.validate();
-}
+    : scorer_(scorer),
+      config_(config),
+      lock_((config.validate(), config.lock), config.metres_per_pixel, config.seed),  // validated before anything is built
+      rng_(mix64(config.seed ^ 0x5DEECE66Dull)) {}
 
 double ParticleFilter::uniform() {
     rng_ += 0x9E3779B97F4A7C15ull;
@@ -81,14 +78,16 @@ double ParticleFilter::normal() {
     return std::sqrt(-2.0 * std::log(u1)) * std::cos(2 * kPi * u2);
 }
 
-void ParticleFilter::scatter(double x, double y, double heading, bool have_heading, double radius_m, std::size_t count) {
+void ParticleFilter::scatter(double x, double y, double heading, bool have_heading, double radius_m, std::size_t count,
+                             std::size_t first) {
     const double r_px = radius_m / config_.metres_per_pixel;
-    particles_.resize(count);
-    for (Particle& p : particles_) {
+    particles_.resize(first + count);
+    for (std::size_t i = first; i < particles_.size(); ++i) {
+        Particle& p = particles_[i];
         const double r = r_px * std::sqrt(uniform()), a = 2 * kPi * uniform();  // uniform over the disc
         p.x = x + r * std::cos(a);
         p.y = y + r * std::sin(a);
-        p.yaw = have_heading ? wrap(heading + config_.heading_noise_deg * kDeg * normal()) : wrap(2 * kPi * uniform());
+        p.yaw = have_heading ? wrap(heading + config_.motion.eps_rot_deg * kDeg * normal()) : wrap(2 * kPi * uniform());
         p.weight = 1;
     }
 }
@@ -98,11 +97,13 @@ void ParticleFilter::initialise(double x, double y, double heading_rad) {
     const std::size_t n = config_.sampling == SamplingMethod::Kld ? config_.max_particles : config_.fixed_particles;
     scatter(x, y, heading_rad, std::isfinite(heading_rad), config_.init_radius_m, n);
     last_east_ = last_north_ = 0;
+    last_heading_ = heading_rad;
+    lock_.reset(x, y, config_.init_radius_m);
     initialised_ = true;
     update_estimate();
 }
 
-ParticleFilter::Motion ParticleFilter::motion_from(const FilterInput& in, bool& lost) {
+StepMotion ParticleFilter::motion_from(const FilterInput& in, bool& lost) {
     double east = in.odometry_east_m, north = in.odometry_north_m;
     lost = !std::isfinite(east) || !std::isfinite(north);
     if (lost) {
@@ -110,23 +111,13 @@ ParticleFilter::Motion ParticleFilter::motion_from(const FilterInput& in, bool& 
     } else {
         last_east_ = east, last_north_ = north;
     }
-    Motion m;
-    m.distance_px = std::hypot(east, north) / config_.metres_per_pixel;
-    m.have_heading = std::isfinite(in.heading_rad);
-    m.heading = m.have_heading ? in.heading_rad : 0;
-    m.translation_sd_px = m.distance_px * config_.translation_noise * (lost ? 3 : 1);
+    const bool have_heading = std::isfinite(in.heading_rad);
+    const double frame_heading = have_heading ? in.heading_rad : last_heading_;
+    const double turn = have_heading && std::isfinite(last_heading_) ? wrap(in.heading_rad - last_heading_) : 0;
+    StepMotion m = make_step_motion(east, north, in.heading_rad, frame_heading, turn, config_.metres_per_pixel);
+    if (have_heading) last_heading_ = in.heading_rad;
+    m.noise_gain = lost ? 3 : 1;
     return m;
-}
-
-void ParticleFilter::propagate(Particle& p, const Motion& m) {
-    // Eq. 2.9 with the magnetometer as the rotation measurement, then eqs. 2.7-2.8 along the new
-    // heading (compass: east = sin, north = cos = -y on the map).
-    const double sd_yaw = config_.heading_noise_deg * kDeg;
-    p.yaw = wrap((m.have_heading ? m.heading : p.yaw) + sd_yaw * normal());
-    const double d = m.distance_px + m.translation_sd_px * normal();
-    const double pos_sd = config_.position_noise_m / config_.metres_per_pixel;
-    p.x += d * std::sin(p.yaw) + pos_sd * normal();
-    p.y -= d * std::cos(p.yaw) + pos_sd * normal();
 }
 
 std::size_t ParticleFilter::draw_index(double total) {
@@ -135,7 +126,7 @@ std::size_t ParticleFilter::draw_index(double total) {
     return std::min<std::size_t>(it - cumulative_.begin(), cumulative_.size() - 1);
 }
 
-std::size_t ParticleFilter::sample_and_propagate(const Motion& m) {
+std::size_t ParticleFilter::sample_and_propagate(const StepMotion& m) {
     cumulative_.resize(particles_.size());
     double total = 0, max_w = 0;
     for (std::size_t i = 0; i < particles_.size(); ++i) {
@@ -152,7 +143,8 @@ std::size_t ParticleFilter::sample_and_propagate(const Motion& m) {
     drawn_.clear();
     auto add = [&](std::size_t i) {
         Particle p = particles_[i];
-        propagate(p, m);
+        const std::array<double, 5> z{normal(), normal(), normal(), normal(), normal()};
+        propagate_particle(config_.motion, m, config_.metres_per_pixel, z, p.x, p.y, p.yaw);
         p.weight = 1;
         drawn_.push_back(p);
         occupy(p);
@@ -190,9 +182,12 @@ std::size_t ParticleFilter::sample_and_propagate(const Motion& m) {
 
 std::size_t ParticleFilter::measure(const FilterInput& in, double& score_ms) {
     poses_.resize(particles_.size());
-    scores_.resize(particles_.size());
     for (std::size_t i = 0; i < particles_.size(); ++i)
         poses_[i] = {static_cast<float>(particles_[i].x), static_cast<float>(particles_[i].y), static_cast<float>(particles_[i].yaw), 1.0f};
+    // Probes at random places ride in the same batch (the lock monitor's baseline).
+    const double probe_yaw = std::isfinite(in.heading_rad) ? in.heading_rad : estimate_.yaw;
+    lock_.add_probes(estimate_.x, estimate_.y, probe_yaw, poses_);
+    scores_.resize(poses_.size());
     const auto t0 = std::chrono::steady_clock::now();
     scorer_.score(in.frame, in.map_px_per_camera_px, poses_, scores_, nullptr);
     score_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -207,6 +202,8 @@ std::size_t ParticleFilter::measure(const FilterInput& in, double& score_ms) {
         }
         particles_[i].weight = w;
     }
+    probe_scores_.assign(scores_.begin() + static_cast<std::ptrdiff_t>(particles_.size()), scores_.end());
+    scores_.resize(particles_.size());
     return invalid;
 }
 
@@ -224,16 +221,21 @@ void ParticleFilter::update_estimate() {
     }
     if (sw > 0) {
         estimate_.x = sx / sw, estimate_.y = sy / sw, estimate_.yaw = std::atan2(ss, sc);
+        double s2 = 0;
+        for (const Particle& p : particles_) s2 += p.weight * ((p.x - estimate_.x) * (p.x - estimate_.x) + (p.y - estimate_.y) * (p.y - estimate_.y));
+        estimate_.spread_px = std::sqrt(s2 / sw);
     }
 }
 
 StepReport ParticleFilter::step(const FilterInput& in) {
     if (!initialised_) throw Error("ParticleFilter::step: call initialise() first");
     StepReport r;
-    const Motion m = motion_from(in, r.odometry_lost);
+    const StepMotion m = motion_from(in, r.odometry_lost);
     r.occupied_bins = sample_and_propagate(m);
+    lock_.predict(m.east_px, -m.north_px);
     r.frame_missing = in.frame.empty();
     scores_.clear();
+    probe_scores_.clear();
     if (!r.frame_missing) {
         r.off_map = measure(in, r.score_ms);
         double total = 0;
@@ -241,10 +243,9 @@ StepReport ParticleFilter::step(const FilterInput& in) {
         if (!(total > 0) || !std::isfinite(total)) {
             // Collapse: redraw around the last estimate moved by this step's odometry, score again.
             r.reinitialised = true;
-            Particle centre{estimate_.x, estimate_.y, estimate_.yaw, 1};
-            centre.x += m.distance_px * std::sin(m.heading), centre.y -= m.distance_px * std::cos(m.heading);
+            const double cx = estimate_.x + m.east_px, cy = estimate_.y - m.north_px;
             const std::size_t n = particles_.size();
-            scatter(centre.x, centre.y, m.heading, m.have_heading, config_.reinit_radius_m, n);
+            scatter(cx, cy, m.heading_rad, m.have_heading, config_.reinit_radius_m, n);
             r.off_map += measure(in, r.score_ms);
             total = 0;
             for (const Particle& p : particles_) total += p.weight;
@@ -255,12 +256,34 @@ StepReport ParticleFilter::step(const FilterInput& in) {
     update_estimate();
     r.estimate = estimate_;
     r.particles = particles_.size();
+    if (!r.frame_missing) check_lock(m, r);
     ++counters_.steps;
     counters_.odometry_lost += r.odometry_lost;
     counters_.frames_missing += r.frame_missing;
     counters_.particles_off_map += r.off_map;
     counters_.reinitialisations += r.reinitialised;
     return r;
+}
+
+void ParticleFilter::check_lock(const StepMotion& m, StepReport& r) {
+    r.lock = lock_.assess(estimate_.best_ncc, probe_scores_, estimate_.x, estimate_.y, estimate_.spread_px * config_.metres_per_pixel);
+    counters_.weak_contrast_steps += r.lock.weak;
+    counters_.odometry_inconsistent_steps += r.lock.inconsistent;
+    if (!r.lock.lost) return;
+    // Widen the search: a share of the particles re-scattered around the dead-reckoned position;
+    // the rest keep the current hypothesis, which wins again at once if it was right. Re-scattered
+    // ones get the kept particles' mean weight, so the next resampling draws them as often.
+    ++counters_.lock_lost_events;
+    const std::size_t n = particles_.size();
+    const auto moved = static_cast<std::size_t>(std::lround(config_.lock.widen_fraction * static_cast<double>(n)));
+    if (moved == 0 || !(r.lock.widen_radius_m > 0)) return;
+    const std::size_t keep = n - moved;
+    double kept_weight = 0;
+    for (std::size_t i = 0; i < keep; ++i) kept_weight += particles_[i].weight;
+    const double w = keep > 0 && kept_weight > 0 ? kept_weight / static_cast<double>(keep) : 1.0;
+    scatter(lock_.dead_reckoning_x(), lock_.dead_reckoning_y(), m.heading_rad, m.have_heading, r.lock.widen_radius_m, moved, keep);
+    for (std::size_t i = keep; i < n; ++i) particles_[i].weight = w;
+    scores_.clear();  // no longer one score per particle
 }
 
 }  // namespace trn::filter

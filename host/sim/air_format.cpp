@@ -146,7 +146,7 @@ AirRecord make_air_record(const FlightFrame& f, const std::string& filename) {
     r.filename = filename;
     r.latitude_deg = f.geo.latitude_deg;
     r.longitude_deg = f.geo.longitude_deg;
-    r.relative_altitude_m = f.truth.altitude_m;
+    r.relative_altitude_m = f.baro_altitude_m;  // measured (barometer), as on a real flight; PoseZ is the truth
     r.imu = attitude_quaternion(f.magnetometer_heading_rad, f.truth.roll_rad, f.truth.pitch_rad);
     r.pose_m = f.position_m;
     r.orientation = attitude_quaternion(f.truth.yaw_rad, f.truth.roll_rad, f.truth.pitch_rad);

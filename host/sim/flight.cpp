@@ -20,18 +20,33 @@ Trajectory make_trajectory(const Map& map, const FlightConfig& cfg) {
     cfg.camera.validate();
     if (!(cfg.scenario.altitude_m > 0)) throw Error("flight: altitude must be > 0");
     if (!(cfg.scenario.fps > 0)) throw Error("flight: fps must be > 0");
-    // Keep the whole footprint on the map, with room for roll/pitch wobble.
-    const double wobble = cfg.scenario.altitude_m * std::tan(3 * cfg.camera_roll_pitch_sd_deg * kDeg);
-    const double margin = footprint_radius_m(cfg.camera, cfg.scenario.altitude_m) + wobble + 5;
+    cfg.scenario.realism.validate();
+    // Keep the whole footprint on the map at the highest altitude, with room for roll/pitch wobble.
+    const double top = cfg.scenario.max_altitude_m();
+    const double wobble = top * std::tan(3 * cfg.camera_roll_pitch_sd_deg * kDeg);
+    const double margin = footprint_radius_m(cfg.camera, top) + wobble + 5;
     if (map.width_m() < 2 * margin + 20 || map.height_m() < 2 * margin + 20)
         throw Error("flight: the map (" + std::to_string(map.width_m()) + " x " + std::to_string(map.height_m()) +
-                    " m) is too small for the camera footprint at " + std::to_string(cfg.scenario.altitude_m) +
+                    " m) is too small for the camera footprint at " + std::to_string(top) +
                     " m (needs more than " + std::to_string(2 * margin + 20) + " m each way)");
     return Trajectory(cfg.scenario.shape, cfg.scenario.nominal_size_m, cfg.scenario.speed_mps, margin, margin,
                       map.width_m() - margin, map.height_m() - margin);
 }
 
+OdometryConfig odometry_config(const FlightConfig& config) {
+    OdometryConfig o = config.odometry;
+    o.seed ^= detail::mix64(config.seed);
+    o.heading_walk_deg_per_sqrt_s += config.scenario.realism.odometry_heading_walk_deg_per_sqrt_s;
+    o.scale_walk_per_sqrt_s += config.scenario.realism.odometry_scale_walk_per_sqrt_s;
+    return o;
+}
+
 }  // namespace
+
+double measured_template_scale(const FlightFrame& f, const Camera& camera, double metres_per_pixel) {
+    // A barometer far off (or a reading near the ground) must not give a non-positive scale.
+    return template_scale(camera, std::max(f.baro_altitude_m, 0.1 * f.truth.altitude_m), metres_per_pixel);
+}
 
 Pose FlightFrame::truth_pose() const {
     return {static_cast<float>(truth.map_x), static_cast<float>(truth.map_y), static_cast<float>(truth.yaw_rad),
@@ -43,17 +58,17 @@ FlightSimulator::FlightSimulator(const Map& map, const FlightConfig& config)
       config_(config),
       trajectory_(make_trajectory(map, config)),
       frame_count_(config.frames ? config.frames : config.scenario.frame_count()),
-      odometry_([&] {
-          OdometryConfig o = config.odometry;
-          o.seed ^= detail::mix64(config.seed);
-          return o;
-      }()),
+      odometry_(odometry_config(config)),
       magnetometer_([&] {
           MagnetometerConfig m = config.magnetometer;
           m.seed ^= detail::mix64(config.seed + 1);
           return m;
-      }()) {
+      }()),
+      barometer_(BarometerConfig{config.scenario.realism.baro_noise_m, config.scenario.realism.baro_bias_walk_m_per_sqrt_s,
+                                 detail::mix64(config.seed + 2)}),
+      conditions_(config.scenario.realism, config.scenario.altitude_m, trajectory_.at(0).heading_rad, config.seed) {
     previous_ = trajectory_.at(0);
+    previous_altitude_m_ = conditions_.altitude_m(0);
     start_x_m_ = previous_.x_m, start_y_m_ = previous_.y_m;
 }
 
@@ -62,13 +77,14 @@ bool FlightSimulator::next(FlightFrame& f) {
     const std::size_t i = next_index_++;
     const double dt = 1.0 / config_.scenario.fps, t = i * dt;
     const TrajectoryState st = trajectory_.at(t);
-    const double mpp = map_.metres_per_pixel, alt = config_.scenario.altitude_m;
+    const double mpp = map_.metres_per_pixel, alt = conditions_.altitude_m(t);
 
     f.index = i;
     f.time_s = t;
     f.truth.map_x = st.x_m / mpp;
     f.truth.map_y = st.y_m / mpp;
-    f.truth.yaw_rad = wrap_angle(st.heading_rad);
+    f.truth.course_rad = wrap_angle(st.heading_rad);
+    f.truth.yaw_rad = wrap_angle(st.heading_rad + conditions_.heading_offset_rad(t, st.heading_rad));
     f.truth.altitude_m = alt;
     // Unstabilised camera: slow, smooth wobble (two sines with seeded phases), not white noise.
     if (config_.camera_roll_pitch_sd_deg > 0) {
@@ -85,12 +101,14 @@ bool FlightSimulator::next(FlightFrame& f) {
     if (i == 0) {
         f.odometry_m = odometry_.estimate();
     } else {
-        const Vec3 delta{st.x_m - previous_.x_m, -(st.y_m - previous_.y_m), 0};
+        const Vec3 delta{st.x_m - previous_.x_m, -(st.y_m - previous_.y_m), alt - previous_altitude_m_};
         f.odometry_m = odometry_.step(delta, dt, st.yaw_rate_rad_s);
     }
-    f.odometry_m.z += alt;  // odometry is initialised with the take-off height, then drifts
+    f.odometry_m.z += conditions_.altitude_m(0);  // odometry is initialised with the first height, then drifts
     f.magnetometer_heading_rad = magnetometer_.read(f.truth.yaw_rad);
+    f.baro_altitude_m = barometer_.read(alt, i == 0 ? 0 : dt);
     previous_ = st;
+    previous_altitude_m_ = alt;
 
     if (config_.render_images) {
         RenderOptions r = config_.render;

@@ -13,6 +13,15 @@ constexpr double kPi = 3.14159265358979323846;
 
 std::vector<Scenario> make_presets() {
     std::vector<Scenario> out;
+    auto add_wind_twins = [&out] {
+        const std::size_t n = out.size();
+        for (std::size_t i = 0; i < n; ++i) {
+            Scenario s = out[i];
+            s.name += "-wind";
+            s.realism = field_realism();
+            out.push_back(s);
+        }
+    };
     for (TerrainStyle terrain : {TerrainStyle::Forest, TerrainStyle::Urban})
         for (TrajectoryShape shape : {TrajectoryShape::Line, TrajectoryShape::Rectangle, TrajectoryShape::Circle})
             for (double altitude : {200.0, 300.0}) {
@@ -26,6 +35,7 @@ std::vector<Scenario> make_presets() {
                 s.nominal_size_m = shape == TrajectoryShape::Line ? 1600 : shape == TrajectoryShape::Rectangle ? 1100 : 1200;
                 out.push_back(s);
             }
+    add_wind_twins();
     return out;
 }
 
@@ -50,6 +60,32 @@ void segment(std::vector<double>& xs, std::vector<double>& ys, double x1, double
 }
 
 }  // namespace
+
+Realism field_realism() {
+    Realism r;
+    r.crab_max_deg = 30;
+    r.altitude_change = 0.3;
+    r.baro_noise_m = 1.5;
+    r.baro_bias_walk_m_per_sqrt_s = 0.1;
+    r.odometry_heading_walk_deg_per_sqrt_s = 0.15;
+    r.odometry_scale_walk_per_sqrt_s = 0.002;
+    return r;
+}
+
+void Realism::validate() const {
+    auto check = [](double v, double lo, double hi, const char* name) {
+        if (!(v >= lo && v <= hi))
+            throw Error(std::string("realism: ") + name + " " + std::to_string(v) + " must be in [" + std::to_string(lo) + ", " +
+                        std::to_string(hi) + "]");
+    };
+    check(crab_max_deg, 0, 60, "crab_max_deg");
+    check(mount_yaw_deg, -180, 180, "mount_yaw_deg");
+    check(altitude_change, 0, 0.6, "altitude_change");
+    check(baro_noise_m, 0, 100, "baro_noise_m");
+    check(baro_bias_walk_m_per_sqrt_s, 0, 10, "baro_bias_walk_m_per_sqrt_s");
+    check(odometry_heading_walk_deg_per_sqrt_s, 0, 10, "odometry_heading_walk_deg_per_sqrt_s");
+    check(odometry_scale_walk_per_sqrt_s, 0, 0.1, "odometry_scale_walk_per_sqrt_s");
+}
 
 std::size_t Scenario::frame_count() const { return static_cast<std::size_t>(std::llround(duration_s * fps)); }
 

@@ -14,6 +14,7 @@ namespace trn::filter {
 namespace {
 
 using testing::short_flight;
+constexpr double kHalfPi = 1.5707963267948966;
 using testing::test_world;
 
 struct Rig {
@@ -30,11 +31,15 @@ FilterConfig small_config(std::uint64_t seed = 1) {
     return c;
 }
 
-LocalizationResult run(const FilterConfig& cfg, double seconds, std::uint64_t flight_seed = 5) {
+LocalizationResult run_flight(const FilterConfig& cfg, const sim::FlightConfig& flight, double start_x = NAN, double start_y = NAN) {
     Rig rig;
     ParticleFilter pf(rig.scorer, cfg);
-    SimulatedFlightSource src(test_world().world, short_flight(seconds, flight_seed), 10);
-    return run_localization(src, pf);
+    SimulatedFlightSource src(test_world().world, flight, 10);
+    return run_localization(src, pf, {}, start_x, start_y);
+}
+
+LocalizationResult run(const FilterConfig& cfg, double seconds, std::uint64_t flight_seed = 5) {
+    return run_flight(cfg, short_flight(seconds, flight_seed));
 }
 
 TEST(ParticleFilter, TracksTheAircraftBetterThanOdometry) {
@@ -44,6 +49,72 @@ TEST(ParticleFilter, TracksTheAircraftBetterThanOdometry) {
     EXPECT_LT(r.summary.filter_final_error_m, 0.5 * r.summary.odometry_final_error_m);
     EXPECT_LT(r.summary.filter_mean_error_m, r.summary.odometry_mean_error_m);
     EXPECT_EQ(r.summary.counters.reinitialisations, 0u);
+    EXPECT_EQ(r.summary.counters.lock_lost_events, 0u) << "a good lock must not be declared lost";
+}
+
+TEST(ParticleFilter, TracksACrabbingClimbingFlightBetterThanOdometry) {
+    // FR-200-wind: the camera points up to 30 degrees off the course, the altitude swings +-30 %
+    // and the template scale comes from a noisy barometer.
+    sim::FlightConfig flight = short_flight(20);
+    flight.scenario = sim::find_scenario("FR-200-wind");
+    const LocalizationResult r = run_flight(small_config(), flight);
+    ASSERT_EQ(r.rows.size(), 100u);
+    EXPECT_LT(r.summary.filter_mean_error_m, 0.5 * r.summary.odometry_mean_error_m);
+    EXPECT_LT(r.rows.back().error_m, 10.0);
+    // The literal model (distance along the heading) is pulled off the track by the crab.
+    FilterConfig literal = small_config();
+    literal.motion.along_heading = true;
+    const LocalizationResult l = run_flight(literal, flight);
+    EXPECT_LT(r.summary.filter_mean_error_m, l.summary.filter_mean_error_m);
+}
+
+// A scorer with a known landscape (map pixels = metres): the true place is a clear peak (0.9),
+// a decoy 50 m south of it a mediocre one (0.3: contrast ~2.3 against the texture), everywhere else scores 0.1 +- 0.1 like random
+// texture. Both move with the aircraft, as a wrong lock tracks along with the odometry.
+class LandscapeScorer : public ParticleScorer {
+public:
+    double truth_x = 1000, truth_y = 1000;
+    static constexpr double kDecoySouth = 50;
+    void score(GrayView, double, std::span<const Pose> poses, std::span<ParticleScore> out, PhaseTimes*) override {
+        for (std::size_t i = 0; i < poses.size(); ++i) {
+            const double x = poses[i].x, y = poses[i].y;
+            auto h = static_cast<std::uint64_t>(std::llround(x / 3) * 73856093 ^ std::llround(y / 3) * 19349663);
+            h = (h ^ (h >> 29)) * 0xBF58476D1CE4E5B9ull;
+            const double texture = 0.1 + 0.17 * (2.0 * static_cast<double>((h >> 11) & 0xFFFF) / 0xFFFF - 1);
+            const double dt = std::hypot(x - truth_x, y - truth_y), dd = std::hypot(x - truth_x, y - truth_y - kDecoySouth);
+            const double ncc = std::max({texture, 0.9 * std::exp(-dt * dt / 200), 0.3 * std::exp(-dd * dd / 200)});
+            out[i] = {static_cast<float>(ncc), static_cast<float>(ncc), 0.0f, 100, kScoreValid};
+        }
+    }
+};
+
+// Runs 120 steps flying east at 12 m/s, 5 Hz, the filter started on the decoy with a 20 m prior
+// (so the truth is outside it: only the lock monitor can find it). Returns the final error, m.
+double decoy_run(bool monitor, std::size_t& lost_events) {
+    LandscapeScorer scorer;
+    FilterConfig cfg = small_config(3);
+    cfg.lock.enabled = monitor;
+    ParticleFilter pf(scorer, cfg);
+    pf.initialise(scorer.truth_x, scorer.truth_y + LandscapeScorer::kDecoySouth, kHalfPi);
+    const std::vector<std::uint8_t> pixels(16 * 16, 128);
+    FilterInput in;
+    in.frame = GrayView{pixels.data(), 16, 16, 16};
+    in.odometry_east_m = 2.4, in.odometry_north_m = 0, in.heading_rad = kHalfPi;
+    for (int step = 0; step < 120; ++step) {
+        scorer.truth_x += 2.4;
+        pf.step(in);
+    }
+    lost_events = pf.counters().lock_lost_events;
+    return std::hypot(pf.estimate().x - scorer.truth_x, pf.estimate().y - scorer.truth_y);
+}
+
+TEST(ParticleFilter, NoticesAMediocreWrongLockAndFindsTheClearOne) {
+    std::size_t watched_events = 0, blind_events = 0;
+    const double watched = decoy_run(true, watched_events), blind = decoy_run(false, blind_events);
+    EXPECT_GT(blind, 40.0) << "without the monitor the decoy should hold the filter";
+    EXPECT_EQ(blind_events, 0u);
+    EXPECT_GE(watched_events, 1u);
+    EXPECT_LT(watched, 10.0) << "the widened search should find the true place " << LandscapeScorer::kDecoySouth << " m away";
 }
 
 TEST(ParticleFilter, FixedSeedReproducesTheRunExactly) {

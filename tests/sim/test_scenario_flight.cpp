@@ -11,16 +11,23 @@
 namespace trn::sim {
 namespace {
 
-TEST(Scenario, TwelvePresetsNamedLikeTheDataset) {
+TEST(Scenario, TwelvePresetsNamedLikeTheDatasetAndTheirWindTwins) {
     const auto& presets = scenario_presets();
-    ASSERT_EQ(presets.size(), 12u);
+    ASSERT_EQ(presets.size(), 24u);
     std::set<std::string> names;
     for (const Scenario& s : presets) {
         names.insert(s.name);
         EXPECT_NEAR(s.speed_mps, 12, 1e-9);
         EXPECT_EQ(s.frame_count(), 16000u);
     }
-    for (const char* n : {"FL-200", "FL-300", "FR-200", "FC-300", "UL-200", "UR-300", "UC-300"}) EXPECT_TRUE(names.count(n)) << n;
+    for (const char* n : {"FL-200", "FL-300", "FR-200", "FC-300", "UL-200", "UR-300", "UC-300"}) {
+        EXPECT_TRUE(names.count(n)) << n;
+        EXPECT_TRUE(names.count(std::string(n) + "-wind")) << n;
+        EXPECT_EQ(find_scenario(n).realism.crab_max_deg, 0) << "the AIR presets keep the dataset's idealised world";
+        EXPECT_EQ(find_scenario(n).realism.altitude_change, 0);
+        EXPECT_EQ(find_scenario(std::string(n) + "-wind").realism.crab_max_deg, 30);
+        EXPECT_EQ(find_scenario(std::string(n) + "-wind").altitude_m, find_scenario(n).altitude_m);
+    }
     EXPECT_EQ(find_scenario("UC-300").terrain, TerrainStyle::Urban);
     EXPECT_EQ(find_scenario("UC-300").shape, TrajectoryShape::Circle);
     EXPECT_EQ(find_scenario("FL-200").altitude_m, 200);

@@ -4,6 +4,7 @@
 // (mean, final, and the slope of a least-squares line of error over distance flown).
 #include <cmath>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,8 @@ struct LocalizationRow {
     std::size_t particles = 0, off_map = 0;
     double score_ms = 0, step_ms = 0;
     bool odometry_lost = false, frame_missing = false, reinitialised = false;
+    double lock_contrast = NAN, lock_drift_m = NAN;  // the lock monitor's evidence (lock_monitor.hpp)
+    bool lock_lost = false;                          // it declared the lock lost and widened the search
 };
 
 struct LocalizationSummary {
@@ -57,6 +60,10 @@ struct FittedLine {
 };
 FittedLine fit_line(const std::vector<double>& x, const std::vector<double>& y);
 inline double fitted_slope(const std::vector<double>& x, const std::vector<double>& y) { return fit_line(x, y).slope; }
+// The lock monitor's counters: added to a command's extra summary-JSON numbers, and as one line
+// for the console.
+std::map<std::string, double> with_lock_numbers(const LocalizationSummary& summary, std::map<std::string, double> numbers);
+std::string format_lock_summary(const LocalizationSummary& summary);
 LocalizationSummary summarise(const std::vector<LocalizationRow>& rows, const FilterCounters& counters, double wall_s);
 
 }  // namespace trn::filter

@@ -5,14 +5,20 @@
 //
 // One step per camera frame:
 //   1. Sample particles from the previous set by weight and propagate each with the motion model
-//      (eqs. 2.7-2.9): translation = odometry distance since the last step with noise, along the
-//      heading; heading = magnetometer reading with noise. KLD sampling (eq. 2.22) keeps drawing
-//      until n >= bound(k occupied 5 m x 5 m bins) (within [min, max]); importance and rejection
-//      sampling draw a fixed count.
+//      (MotionModel below: eqs. 2.7-2.11 moved by the odometry's displacement vector, not only its
+//      distance): heading = measured heading with noise; translation = the odometry increment as
+//      seen from the measured heading (forward / sideways, so a crab angle is kept), re-applied
+//      from the particle's heading, with along/across-track noise. KLD sampling (eq. 2.22) keeps
+//      drawing until n >= bound(k occupied 5 m x 5 m bins) (within [min, max]); importance and
+//      rejection sampling draw a fixed count.
 //   2. Score ALL particles in one batched ParticleScorer call (the bins depend only on positions,
-//      so sampling first and scoring afterwards is the same algorithm as Algorithm 4's loop).
+//      so sampling first and scoring afterwards is the same algorithm as Algorithm 4's loop),
+//      together with a few probes at random places around the estimate (lock_monitor.hpp).
 //   3. Weight = conversion(NCC) (eqs. 2.16-2.21); estimate = weighted mean of x, y and circular
 //      weighted mean of yaw; the best particle is reported too.
+//   4. The lock monitor compares the best score with the probes' and the track with the odometry;
+//      when it says lost, half the particles are re-scattered around the dead-reckoned position
+//      within the odometry's drift bound (counted).
 //
 // Bad input is handled and counted, never fatal:
 //   - lost odometry (a non-finite delta): the last good per-step displacement is reused (constant
@@ -23,6 +29,7 @@
 //   - collapse (every weight 0 or non-finite): re-initialisation policy — the particle set is redrawn
 //     uniformly within `reinit_radius_m` of the last estimate (propagated by this step's motion),
 //     headings from the magnetometer, and the step is scored again.
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -31,6 +38,8 @@
 #include <vector>
 
 #include "trn/filter/conversion.hpp"
+#include "trn/filter/lock_monitor.hpp"
+#include "trn/filter/motion_model.hpp"
 #include "trn/filter/scorer.hpp"
 
 namespace trn::filter {
@@ -53,11 +62,8 @@ struct FilterConfig {
     // Initialisation: uniform within this radius of the last known position.
     double init_radius_m = 300;
     double reinit_radius_m = 300;
-    // Motion noise (eqs. 2.10, 2.11): translation sd = distance * translation_noise + position_noise_m
-    // (per step, plus an isotropic sd of position_noise_m), heading sd around the magnetometer.
-    double translation_noise = 0.05;
-    double position_noise_m = 1.0;
-    double heading_noise_deg = 2.0;
+    MotionModel motion;   // eqs. 2.7-2.11 and their noise terms
+    LockMonitorConfig lock;  // wrong-lock detection and wider search
     std::uint64_t seed = 1;
 
     void validate() const;  // throws trn::Error naming the field
@@ -80,6 +86,7 @@ struct Estimate {
     double x = 0, y = 0, yaw = 0;  // weighted mean (circular for yaw)
     double best_x = 0, best_y = 0, best_yaw = 0;
     double best_ncc = 0;
+    double spread_px = 0;  // weighted rms distance of the particles from (x, y)
 };
 
 struct StepReport {
@@ -88,11 +95,15 @@ struct StepReport {
     std::size_t occupied_bins = 0;
     std::size_t off_map = 0;  // particles with an invalid score this step
     bool odometry_lost = false, frame_missing = false, reinitialised = false;
+    LockReport lock;      // the lock monitor's evidence and verdict this step
     double score_ms = 0;  // wall time of the batched scoring call(s)
 };
 
 struct FilterCounters {
     std::size_t steps = 0, odometry_lost = 0, frames_missing = 0, particles_off_map = 0, reinitialisations = 0;
+    std::size_t lock_lost_events = 0;     // times the lock monitor declared the lock lost and widened the search
+    std::size_t weak_contrast_steps = 0;  // steps whose best score did not stand out from random places
+    std::size_t odometry_inconsistent_steps = 0;  // steps whose estimate left the odometry's drift bound
 };
 
 class ParticleFilter {
@@ -110,17 +121,14 @@ public:
     const FilterConfig& config() const { return config_; }
 
 private:
-    struct Motion {
-        double distance_px, heading, translation_sd_px;
-        bool have_heading;
-    };
-    Motion motion_from(const FilterInput& input, bool& lost);
-    void propagate(Particle& p, const Motion& m);
-    std::size_t sample_and_propagate(const Motion& m);  // returns occupied bins
+    StepMotion motion_from(const FilterInput& input, bool& lost);
+    std::size_t sample_and_propagate(const StepMotion& m);  // returns occupied bins
     std::size_t draw_index(double total_weight);
-    void scatter(double x, double y, double heading, bool have_heading, double radius_m, std::size_t count);
+    void scatter(double x, double y, double heading, bool have_heading, double radius_m, std::size_t count,
+                 std::size_t first = 0);
     std::size_t measure(const FilterInput& input, double& score_ms);  // returns invalid count
     void update_estimate();
+    void check_lock(const StepMotion& m, StepReport& report);
     double uniform();
     double normal();
 
@@ -129,11 +137,12 @@ private:
     std::vector<Particle> particles_, drawn_;
     std::vector<double> cumulative_;
     std::vector<Pose> poses_;
-    std::vector<ParticleScore> scores_;
+    std::vector<ParticleScore> scores_, probe_scores_;
     std::vector<std::uint64_t> bins_;
     Estimate estimate_;
     FilterCounters counters_;
-    double last_east_ = 0, last_north_ = 0;
+    LockMonitor lock_;
+    double last_east_ = 0, last_north_ = 0, last_heading_ = NAN;
     bool initialised_ = false;
     std::uint64_t rng_;
 };

@@ -6,6 +6,7 @@
 
 #include "trn/scoring.hpp"
 #include "trn/sim/camera.hpp"
+#include "trn/sim/field_conditions.hpp"
 #include "trn/sim/map.hpp"
 #include "trn/sim/render.hpp"
 #include "trn/sim/scenario.hpp"
@@ -16,6 +17,7 @@ namespace trn::sim {
 struct GroundTruth {
     double map_x = 0, map_y = 0;  // map pixel under the aircraft
     double yaw_rad = 0;           // compass heading of the frame top (scoring.hpp convention)
+    double course_rad = 0;        // compass direction of travel (= yaw_rad without wind or mount yaw)
     double altitude_m = 0;        // above ground
     double roll_rad = 0, pitch_rad = 0;  // camera attitude (0 with the gimbal)
 };
@@ -27,13 +29,17 @@ struct FlightFrame {
     Vec3 position_m;               // true east / north / up from the start point
     LatLon geo;                    // true latitude / longitude
     Vec3 odometry_m;               // visual odometry estimate, same frame as position_m
-    double magnetometer_heading_rad = 0;
-    double template_scale = 1;     // map pixels per camera pixel at this altitude
+    double magnetometer_heading_rad = 0;  // measured heading of the camera (frame top)
+    double baro_altitude_m = 0;    // measured altitude above ground (barometer)
+    double template_scale = 1;     // map pixels per camera pixel at the TRUE altitude (truth_pose)
     GrayImage image;               // empty when the flight is not rendering images
 
     // The pose to score this frame at on the map: the truth as a scoring Pose.
     Pose truth_pose() const;
 };
+
+// Map pixels per camera pixel as a localizer would compute it: from the barometric altitude.
+double measured_template_scale(const FlightFrame& frame, const Camera& camera, double metres_per_pixel);
 
 struct FlightConfig {
     Scenario scenario;
@@ -67,7 +73,10 @@ private:
     std::size_t next_index_ = 0;
     OdometrySimulator odometry_;
     Magnetometer magnetometer_;
+    Barometer barometer_;
+    FieldConditions conditions_;
     TrajectoryState previous_;
+    double previous_altitude_m_ = 0;
     double start_x_m_ = 0, start_y_m_ = 0;
 };
 

@@ -1,10 +1,14 @@
 #pragma once
-// The twelve AIR flight presets and their trajectories.
+// The twelve AIR flight presets, their twelve "-wind" twins and the trajectories.
 //
 // Names follow the dataset: terrain (F forest, U urban) + shape (L line, R rectangle, C circle)
-// + altitude, e.g. "FL-200", "UC-300". A trajectory is a closed loop flown at constant speed and
-// altitude (a line is flown out and back with U-turns), fitted into the area it is given, so the
-// same preset works on a 6 km procedural map and on a 900 m orthophoto.
+// + altitude, e.g. "FL-200", "UC-300". A trajectory is a closed loop flown at constant speed
+// (a line is flown out and back with U-turns), fitted into the area it is given, so the same
+// preset works on a 6 km procedural map and on a 900 m orthophoto.
+//
+// The AIR presets are the dataset's idealised world: the camera points along the track, the
+// altitude is constant and known. Each has a twin "<name>-wind" (e.g. "FR-200-wind") with
+// field_realism() on: wind crab, climbs and descents, a noisy barometer, drifting odometry.
 #include <string>
 #include <string_view>
 #include <vector>
@@ -15,6 +19,31 @@ namespace trn::sim {
 
 enum class TrajectoryShape { Line, Rectangle, Circle };
 
+// What real flights have and the AIR presets do not (all zero = the AIR dataset's world).
+struct Realism {
+    // Wind: the camera heading is the course plus a crab angle, asin(wind/airspeed * sin(wind
+    // direction - course)), with wind/airspeed = sin(crab_max_deg); the wind direction starts
+    // 45-135 degrees off the first course and veers slowly (+-40 degrees), gusts add +-20 %.
+    double crab_max_deg = 0;
+    double mount_yaw_deg = 0;           // constant yaw of the camera mount against the airframe
+    // Climbs / descents: altitude = nominal * (1 + altitude_change * p(t)), p a smooth seeded
+    // profile in [-1, 1] (periods of 70-200 s, so at 12 m/s a full swing takes ~0.5-1 km).
+    double altitude_change = 0;
+    // Barometric altitude (what RelativeAltitude records and the filter scales templates by):
+    // truth + white noise (sd) + a bias random walk (m per sqrt(s)).
+    double baro_noise_m = 0;
+    double baro_bias_walk_m_per_sqrt_s = 0;
+    // Extra odometry drift on top of FlightConfig::odometry: its direction and its scale random-walk.
+    double odometry_heading_walk_deg_per_sqrt_s = 0;
+    double odometry_scale_walk_per_sqrt_s = 0;
+
+    void validate() const;  // throws trn::Error naming the field
+};
+
+// The "-wind" presets' realism: crab up to 30 degrees, +-30 % altitude, barometer 1.5 m sd with a
+// 0.1 m/sqrt(s) bias walk, odometry direction walk 0.15 deg/sqrt(s), scale walk 0.002/sqrt(s).
+Realism field_realism();
+
 struct Scenario {
     std::string name;
     TerrainStyle terrain = TerrainStyle::Forest;
@@ -24,6 +53,10 @@ struct Scenario {
     double fps = 50;
     double duration_s = 320;  // 16,000 frames at 50 FPS, as a real AIR flight
     double nominal_size_m = 1600;  // line length / rectangle long side / circle diameter
+    Realism realism;               // all zero for the AIR presets
+
+    // Highest altitude the flight reaches (the camera footprint must fit the map up there).
+    double max_altitude_m() const { return altitude_m * (1 + realism.altitude_change); }
 
     std::size_t frame_count() const;
 };

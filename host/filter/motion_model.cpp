@@ -1,0 +1,62 @@
+#include "trn/filter/motion_model.hpp"
+
+#include <string>
+
+#include "trn/error.hpp"
+
+namespace trn::filter {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kDeg = kPi / 180;
+
+double wrap(double a) {
+    a = std::fmod(a + kPi, 2 * kPi);
+    if (a <= 0) a += 2 * kPi;
+    return a - kPi;
+}
+
+}  // namespace
+
+void MotionModel::validate() const {
+    auto in_range = [](double v, double lo, double hi, const char* name) {
+        if (!(v >= lo && v <= hi))
+            throw Error(std::string("motion model: ") + name + " " + std::to_string(v) + " must be finite and in [" +
+                        std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    };
+    in_range(alpha1, 0, 1, "alpha1");
+    in_range(alpha2, 0, 1, "alpha2");
+    in_range(alpha3, 0, 5, "alpha3");
+    in_range(eps_tran_m, 0, 1000, "eps_tran_m");
+    in_range(eps_rot_deg, 0, 180, "eps_rot_deg");
+}
+
+StepMotion make_step_motion(double east_m, double north_m, double heading_rad, double frame_heading_rad, double turn_rad,
+                            double mpp) {
+    StepMotion m;
+    m.east_px = east_m / mpp, m.north_px = north_m / mpp;
+    m.distance_px = std::hypot(m.east_px, m.north_px);
+    m.have_heading = std::isfinite(heading_rad);
+    m.heading_rad = m.have_heading ? heading_rad : 0;
+    m.turn_rad = std::isfinite(turn_rad) ? std::abs(turn_rad) : 0;
+    if (std::isfinite(frame_heading_rad) && m.distance_px > 0) {
+        // Forward / right of the heading (compass: forward = (sin, cos) in east/north).
+        const double s = std::sin(frame_heading_rad), c = std::cos(frame_heading_rad);
+        const double forward = m.east_px * s + m.north_px * c, right = m.east_px * c - m.north_px * s;
+        m.course_offset_rad = std::atan2(right, forward);
+    }
+    return m;
+}
+
+void propagate_particle(const MotionModel& model, const StepMotion& m, double mpp, const std::array<double, 5>& z, double& x,
+                        double& y, double& yaw) {
+    yaw = wrap((m.have_heading ? m.heading_rad : yaw) + model.eps_rot_deg * kDeg * z[0]);
+    const double d = m.distance_px * (1 + model.alpha1 * m.noise_gain * z[1]);
+    const double offset = model.along_heading ? 0.0 : m.course_offset_rad;
+    const double course = yaw + offset + ((model.alpha2 * m.noise_gain) + model.alpha3 * m.turn_rad) * z[2];
+    const double pos_sd = model.eps_tran_m / mpp;
+    x += d * std::sin(course) + pos_sd * z[3];
+    y -= d * std::cos(course) + pos_sd * z[4];
+}
+
+}  // namespace trn::filter

@@ -1,0 +1,88 @@
+#pragma once
+// Notices a confident lock on the wrong place. Two kinds of evidence, per filter step:
+//   - contrast: the best particle's NCC against what random places score. A few probe poses at
+//     random places in a ring around the estimate are scored with the particles (same batch);
+//     contrast = (best NCC - probes' mean) / probes' sd. A true lock stands out; a wrong one is
+//     one more local maximum of similar texture. Weak = contrast below `min_contrast`.
+//   - odometry consistency: the estimate against dead reckoning (odometry increments) from the
+//     last fix (a step with contrast >= `confident_contrast` whose particle cloud has converged to
+//     within `converged_m` rms; the start counts as a fix within the initialisation radius);
+//     leaving the odometry's plausible drift (`drift_fraction` of the distance since, plus
+//     `drift_floor_m`, plus the fix's own uncertainty) is inconsistent. While the cloud is still
+//     spread (converging) neither a fix nor an inconsistency is declared: its mean means little.
+// Lost = inconsistent without being a fix, or weak for `weak_steps` steps in a row. A fix far
+// from dead reckoning is accepted: a match that stands out that much outranks drifting odometry
+// (that is how a wrong start is left behind).
+// When lost, the filter re-scatters `widen_fraction` of its particles around the dead-reckoned
+// position, within the drift bound (at most `widen_radius_m`); the rest keep the current
+// hypothesis, which wins again at once if it was right. The monitor then waits `cooldown_steps`
+// before its next verdict. Every event is counted.
+// The search is widened no further than the drift bound on purpose: over weak texture the true
+// lock itself has a low contrast, and a wider disc always holds some other place that scores
+// better than the truth (a version that doubled the radius at every loss walked off correct
+// FR-200 / FR-300 locks over a bare field). So a wrong lock is escaped when the truth lies within
+// what the odometry allows since the last fix (e.g. within the initialisation radius of the start).
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "trn/scoring.hpp"
+
+namespace trn::filter {
+
+struct LockMonitorConfig {
+    bool enabled = true;
+    std::size_t probes = 48;            // random places scored per step (0: no contrast evidence)
+    double probe_min_m = 150, probe_max_m = 600;  // ring around the estimate where probes go
+    double min_contrast = 3.0;          // best NCC must exceed the probes' mean by this many sd
+    double confident_contrast = 5.5;    // a step this distinct is a fix: dead reckoning restarts there
+    double converged_m = 30;            // ... if the particle cloud is within this rms radius
+    std::size_t weak_steps = 8;         // consecutive weak steps that make "lost"
+    double drift_fraction = 0.15;       // allowed departure from dead reckoning per metre flown
+    double drift_floor_m = 40;          // ... plus this
+    double widen_fraction = 0.5;        // share of the particles re-scattered when lost
+    double widen_radius_m = 300;        // most radius of the wider search around dead reckoning
+    std::size_t cooldown_steps = 10;    // steps after a widening without a verdict
+
+    void validate() const;  // throws trn::Error naming the field and its range
+};
+
+struct LockReport {
+    double best_ncc = NAN, probe_mean = NAN, probe_sd = NAN, contrast = NAN;
+    double drift_m = NAN, drift_bound_m = NAN;  // |estimate - dead reckoning| and its bound
+    bool weak = false, confident = false, inconsistent = false, lost = false;
+    double widen_radius_m = 0;  // when lost: re-scatter within this radius of dead reckoning
+};
+
+class LockMonitor {
+public:
+    LockMonitor(const LockMonitorConfig& config, double metres_per_pixel, std::uint64_t seed);
+
+    // A new start: dead reckoning from (x, y) map pixels, known to within `uncertainty_m`.
+    void reset(double x, double y, double uncertainty_m);
+    // This step's odometry increment, map pixels (x east, y south).
+    void predict(double dx_px, double dy_px);
+    // Appends the probe poses for this step around (x, y) at `yaw`; returns how many.
+    std::size_t add_probes(double x, double y, double yaw, std::vector<Pose>& poses);
+    // The verdict from the best particle's NCC, the probes' scores, the estimate (map pixels) and
+    // the particle cloud's rms spread around it (metres).
+    LockReport assess(double best_ncc, std::span<const ParticleScore> probe_scores, double estimate_x, double estimate_y,
+                      double spread_m);
+
+    double dead_reckoning_x() const { return dead_x_; }
+    double dead_reckoning_y() const { return dead_y_; }
+    const LockMonitorConfig& config() const { return config_; }
+
+private:
+    double uniform();
+
+    LockMonitorConfig config_;
+    double mpp_;
+    std::uint64_t rng_;
+    double dead_x_ = 0, dead_y_ = 0, since_fix_m_ = 0, fix_uncertainty_m_ = 0;
+    std::size_t weak_run_ = 0, cooldown_ = 0;
+};
+
+}  // namespace trn::filter

@@ -1,0 +1,54 @@
+#pragma once
+// The particle motion model: the dissertation's eqs. 2.7-2.11 generalised from "the odometry's
+// distance along the heading" to "the odometry's displacement vector".
+//
+// Reading of the equations (docs/RESULTS.md, "Motion model"): per step the odometry gives an
+// increment (east, north) and the magnetometer/IMU a heading psi of the camera. The increment is
+// expressed in the frame of psi: forward f and sideways r, so delta_tran = |(f, r)| and the
+// course offset delta_c = atan2(r, f) (the crab angle: wind, mount yaw; 0 when the camera points
+// along the track). Each particle then moves
+//     theta' = psi + N(0, eps_rot)                                   (eqs. 2.9, 2.11)
+//     d      = delta_tran * (1 + alpha1 * N(0,1))                     (eq. 2.10, along track)
+//     c      = theta' + delta_c + (alpha2 + alpha3 * |turn|) * N(0,1)  (course, across track)
+//     x'     = x + d sin(c) + N(0, eps_tran),  y' = y - d cos(c) + N(0, eps_tran)   (eqs. 2.7, 2.8)
+// (compass convention: x east, y south). A particle at the true heading with no noise follows
+// the odometry's track exactly, crab or not. `along_heading` restores the literal equations
+// (delta_c = 0: the odometry's direction is dropped), for comparison.
+#include <array>
+#include <cmath>
+
+namespace trn::filter {
+
+struct MotionModel {
+    bool along_heading = false;
+    double alpha1 = 0.05;      // along-track sd per metre moved (the odometry's scale error)
+    double alpha2 = 0.03;      // course sd, radians (= across-track sd per metre moved)
+    double alpha3 = 0.2;       // extra course sd per radian the heading turned this step (odometry in turns)
+    double eps_tran_m = 1.0;   // isotropic position sd per step, metres
+    double eps_rot_deg = 2.0;  // heading sd around the measured heading, degrees
+
+    void validate() const;  // throws trn::Error naming the field and its range
+};
+
+// One step's motion as every particle sees it.
+struct StepMotion {
+    double distance_px = 0;        // delta_tran, map pixels
+    double course_offset_rad = 0;  // delta_c: direction of the increment minus the measured heading
+    double east_px = 0, north_px = 0;  // the increment itself (map pixels; north = -y)
+    double heading_rad = 0;        // measured heading this step
+    bool have_heading = false;     // false: each particle keeps its own heading
+    double turn_rad = 0;           // |heading change| since the previous step
+    double noise_gain = 1;         // > 1 while the odometry is lost (constant velocity)
+};
+
+// `frame_heading_rad`: the heading the increment is expressed against (this step's, or the last
+// known one when this step has none; NaN: none ever, the increment is taken as forward).
+StepMotion make_step_motion(double east_m, double north_m, double heading_rad, double frame_heading_rad, double turn_rad,
+                            double metres_per_pixel);
+
+// Moves one particle (x, y map pixels, yaw radians). `z`: five independent standard normal draws
+// (heading, along track, course, x, y); all zero = the noise-free motion.
+void propagate_particle(const MotionModel& model, const StepMotion& m, double metres_per_pixel, const std::array<double, 5>& z,
+                        double& x, double& y, double& yaw);
+
+}  // namespace trn::filter
