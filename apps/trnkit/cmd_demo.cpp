@@ -47,7 +47,9 @@ void demo(const DemoArgs& a) {
     const sim::Scenario& preset = sim::find_scenario(a.scenario);
     if (!(a.distance_km > 0)) throw Error("--distance-km must be > 0");
     const std::string out = a.out.empty() ? (fs::temp_directory_path() / "trnkit-demo").string() : a.out;
-    io::check_output_folder(out, "demo", a.force);  // before the maps and the flight, not after
+    // The default folder is demo's by definition (older trnkit versions wrote it without a marker).
+    const bool force = a.force || a.out.empty();
+    io::check_output_folder(out, "demo", force);  // before the maps and the flight, not after
 
     // The localization map (a.map_year) and the world the camera sees (a.flight_year), same place.
     sim::ProceduralMapOptions mo;
@@ -95,7 +97,7 @@ void demo(const DemoArgs& a) {
     filter::ParticleFilter pf(scorer, cfg);
     const filter::LocalizationResult result = filter::run_localization(source, pf, progress_bar);
 
-    io::open_output_folder(out, "demo", a.force);
+    io::open_output_folder(out, "demo", force);
     filter::write_rows_csv(out + "/localization.csv", result.rows);
     filter::write_summary_json(out + "/summary.json", result.summary,
                                {{"backend", backend->info().name}, {"conversion", cfg.conversion.to_string()},
