@@ -20,14 +20,18 @@ namespace {
 // dense optimum; farther than the shoulder of one peak means another peak wins.
 constexpr double kBestTolerancePx = reg::kShoulderPx;
 
-std::string row_text(const std::string& frame, const Pose& p, double ncc, const reg::Uniqueness& u, double dx, double dy) {
-    char buf[320];
-    std::snprintf(buf, sizeof buf, "%s,%.2f,%.2f,%.5f,%.5f,%.4f,%.2f,%.2f,%.4f,%.1f,%.1f\n", frame.c_str(), p.x, p.y, p.yaw, p.scale, ncc,
-                  dx, dy, u.runner_up_ncc, u.runner_up_dist, u.best_dist);
+std::string row_text(const std::string& frame, const reg::FramePose& f, const reg::Uniqueness& u) {
+    char buf[400];
+    const Pose& p = f.pose;
+    std::snprintf(buf, sizeof buf, "%s,%.2f,%.2f,%.5f,%.5f,%.4f,%.1f,%.1f,%.1f,%.1f,%.4f,%.1f,%.1f\n", frame.c_str(), p.x, p.y, p.yaw,
+                  p.scale, u.ncc_at_pose, f.dx, f.dy, f.chain_dx, f.chain_dy, u.runner_up_ncc, u.runner_up_dist, u.best_dist);
     return buf;
 }
 
-const char* kHeader = "frame,x,y,yaw,scale,ncc,chain_dx,chain_dy,runner_up_ncc,runner_up_dist,best_dist\n";
+// ncc: dense NCC at the pose (cpu backend); step_d*: refined minus the previous frame's pose moved
+// by the frame motion; chain_d*: refined minus the joint chain; runner_up_*: the best other peak
+// within the window (sparse NCC, distance from the pose); best_dist: the window's best from the pose.
+const char* kHeader = "frame,x,y,yaw,scale,ncc,step_dx,step_dy,chain_dx,chain_dy,runner_up_ncc,runner_up_dist,best_dist\n";
 
 }  // namespace
 
@@ -43,7 +47,7 @@ void add_register_command(CLI::App& app) {
     cmd->add_option("--map", a->map, "Orthophoto the frames were taken over")->required();
     cmd->add_option("frames", a->frames, "Consecutive camera frames, in flight order")->required();
     cmd->add_option("--verify", a->verify, "Check this poses CSV instead of searching (rows name the frames by file name)");
-    cmd->add_option("-o,--out", a->out, "Poses CSV to write (default: standard output)");
+    cmd->add_option("-o,--out", a->out, "Poses CSV to write (default: standard output); written even when a pose fails the check (exit status 1)");
     cmd->add_option("-b,--backend", a->backend, "Backend that scores NCC")->capture_default_str();
     cmd->add_option("--radius", a->radius, "Uniqueness window: each pose must be the best NCC within +-R map px")
         ->capture_default_str()
@@ -52,7 +56,7 @@ void add_register_command(CLI::App& app) {
     cmd->add_option("--max-scale", a->max_scale, "Largest map px per frame px searched")->capture_default_str()->check(real_in(0.05, 4));
     cmd->add_option("--anchor", a->anchor, "Approximate pose of the first frame X Y YAW_DEG SCALE: skips the global search")
         ->expected(4)
-        ->check(CLI::Range(-1e6, 1e6));
+        ->check(real_in(-1e6, 1e6));
     cmd->callback([a] {
         if (a->min_scale > a->max_scale) throw Error("--min-scale must not exceed --max-scale");
         if (!a->out.empty()) io::check_output_file(a->out, "--out");
@@ -68,15 +72,16 @@ void add_register_command(CLI::App& app) {
 
         std::string csv = kHeader;
         int failures = 0;
-        auto check = [&](const std::string& name, const GrayImage& frame, const Pose& p, double dx, double dy) {
+        auto check = [&](const std::string& name, const GrayImage& frame, const reg::FramePose& f) {
+            const Pose& p = f.pose;
             const reg::Uniqueness u = reg::check_unique(*backend, handle, frame, p, a->radius, 2);
             const bool ok = u.best_dist <= kBestTolerancePx;
             if (!ok) ++failures;
-            std::fprintf(stderr, "%s  x %7.1f y %7.1f yaw %6.1f deg scale %.3f  offset %5.1f %5.1f  ncc %.3f  runner-up %.3f at %5.1f px%s\n", name.c_str(), p.x,
-                         p.y, p.yaw * 180 / std::numbers::pi, p.scale, dx, dy, u.ncc_at_pose, u.runner_up_ncc, u.runner_up_dist,
+            std::fprintf(stderr, "%s  x %7.1f y %7.1f yaw %6.1f deg scale %.3f  off chain %5.1f %5.1f  ncc %.3f  runner-up %.3f at %5.1f px%s\n", name.c_str(), p.x,
+                         p.y, p.yaw * 180 / std::numbers::pi, p.scale, f.chain_dx, f.chain_dy, u.ncc_at_pose, u.runner_up_ncc, u.runner_up_dist,
                          "");
             if (!ok) std::fprintf(stderr, "    NOT THE BEST: NCC %.3f at x %.1f y %.1f\n", u.best_ncc, u.best.x, u.best.y);
-            csv += row_text(name, p, u.ncc_at_pose, u, dx, dy);
+            csv += row_text(name, f, u);
         };
 
         if (!a->verify.empty()) {
@@ -84,7 +89,7 @@ void add_register_command(CLI::App& app) {
                 std::size_t k = 0;
                 while (k < names.size() && names[k] != row.frame) ++k;
                 if (k == names.size()) throw Error(a->verify + ": frame '" + row.frame + "' is not among the given frames");
-                check(row.frame, frames[k], row.pose, 0, 0);
+                check(row.frame, frames[k], reg::FramePose{row.pose});
             }
         } else {
             reg::RegisterOptions o;
@@ -107,7 +112,7 @@ void add_register_command(CLI::App& app) {
             std::fprintf(stderr, "anchor x %.1f y %.1f yaw %.2f deg scale %.4f, mean NCC of the chained poses %.3f\n", r.anchor.x, r.anchor.y,
                          r.anchor.yaw * 180 / std::numbers::pi, r.anchor.scale, r.joint_ncc);
             for (std::size_t k = 0; k < frames.size(); ++k)
-                check(names[k], frames[k], r.frames[k].pose, r.frames[k].dx, r.frames[k].dy);
+                check(names[k], frames[k], r.frames[k]);
         }
         if (a->out.empty()) std::cout << csv;
         else io::write_file_atomic(a->out, csv);

@@ -287,7 +287,9 @@ Registration register_frames(Backend& backend, const GrayImage& map, const std::
         const std::vector<Pose> g2 = anchor_grid(cur.anchor, 2, 0.5, 2, 0.5 * kDeg, 2, 0.01);
         const std::vector<float> s2 = score_all(backend, handle, templs[k], g2, {});
         cur = best_of(g2, std::vector<double>(s2.begin(), s2.end()));
-        r.frames.push_back({cur.anchor, cur.score, cur.anchor.x - predicted.x, cur.anchor.y - predicted.y});
+        const Pose chained = chained_pose(r.anchor, r.chain[k], frames[0], frames[k]);
+        r.frames.push_back({cur.anchor, cur.score, cur.anchor.x - predicted.x, cur.anchor.y - predicted.y, cur.anchor.x - chained.x,
+                            cur.anchor.y - chained.y});
     }
     return r;
 }

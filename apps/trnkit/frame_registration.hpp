@@ -47,7 +47,8 @@ Pose chained_pose(const Pose& anchor, const Similarity& to_frame0, const GrayIma
 struct FramePose {
     Pose pose;
     double ncc = 0;
-    double dx = 0, dy = 0;  // refined minus predicted (previous pose + frame motion), map pixels
+    double dx = 0, dy = 0;              // refined minus predicted (previous pose + frame motion), map px
+    double chain_dx = 0, chain_dy = 0;  // refined minus the joint chain (anchor + chained motion), map px
 };
 
 struct RegisterOptions {
