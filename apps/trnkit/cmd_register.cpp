@@ -7,6 +7,7 @@
 
 #include "commands.hpp"
 #include "frame_registration.hpp"
+#include "real_air_folder.hpp"
 #include "options.hpp"
 #include "trn/error.hpp"
 #include "trn/io/atomic_file.hpp"
@@ -37,7 +38,8 @@ const char* kHeader = "frame,x,y,yaw,scale,ncc,step_dx,step_dy,chain_dx,chain_dy
 
 void add_register_command(CLI::App& app) {
     struct Args {
-        std::string map, verify, out, backend = "cpu";
+        std::string map, verify, out, backend = "cpu", air_out;
+        std::uint64_t seed = 1;
         std::vector<std::string> frames;
         double radius = 160, min_scale = 0.3, max_scale = 1.5;
         std::vector<double> anchor;
@@ -57,6 +59,10 @@ void add_register_command(CLI::App& app) {
     cmd->add_option("--anchor", a->anchor, "Approximate pose of the first frame X Y YAW_DEG SCALE: skips the global search")
         ->expected(4)
         ->check(real_in(-1e6, 1e6));
+    cmd->add_option("--air-out", a->air_out,
+                    "Also write an AIR folder of the frames with these poses as truth and simulated odometry and magnetometer "
+                    "(only when every pose passes the check)");
+    cmd->add_option("--seed", a->seed, "Seed of the simulated odometry and magnetometer of --air-out")->capture_default_str()->check(any_seed());
     cmd->callback([a] {
         if (a->min_scale > a->max_scale) throw Error("--min-scale must not exceed --max-scale");
         if (!a->out.empty()) io::check_output_file(a->out, "--out");
@@ -72,6 +78,8 @@ void add_register_command(CLI::App& app) {
 
         std::string csv = kHeader;
         int failures = 0;
+        std::vector<reg::PoseRow> found;  // in frame order, for --air-out
+        std::vector<GrayImage> found_frames;
         auto check = [&](const std::string& name, const GrayImage& frame, const reg::FramePose& f) {
             const Pose& p = f.pose;
             const reg::Uniqueness u = reg::check_unique(*backend, handle, frame, p, a->radius, 2);
@@ -82,6 +90,8 @@ void add_register_command(CLI::App& app) {
                          "");
             if (!ok) std::fprintf(stderr, "    NOT THE BEST: NCC %.3f at x %.1f y %.1f\n", u.best_ncc, u.best.x, u.best.y);
             csv += row_text(name, f, u);
+            found.push_back({name, p, u.ncc_at_pose});
+            found_frames.push_back(frame);
         };
 
         if (!a->verify.empty()) {
@@ -116,7 +126,14 @@ void add_register_command(CLI::App& app) {
         }
         if (a->out.empty()) std::cout << csv;
         else io::write_file_atomic(a->out, csv);
-        if (failures) throw Error(std::to_string(failures) + " pose(s) are not the best NCC within +-" + std::to_string(int(a->radius)) + " px");
+        if (!a->air_out.empty() && !failures) {
+            reg::RealAirOptions o;
+            o.odometry.seed = a->seed;
+            o.magnetometer.seed = a->seed + 1;
+            reg::write_real_air_folder(a->air_out, found, found_frames, o);
+            std::cerr << "AIR folder " << a->air_out << ": " << found.size() << " frames\n";
+        }
+        if (failures) throw Error(std::string(a->air_out.empty() ? "" : "no AIR folder written: ") + std::to_string(failures) + " pose(s) are not the best NCC within +-" + std::to_string(int(a->radius)) + " px");
     });
 }
 

@@ -9,6 +9,9 @@
 #include <fstream>
 
 #include "frame_registration.hpp"
+#include "real_air_folder.hpp"
+#include "trn/sim/air_format.hpp"
+#include "trn/sim/camera.hpp"
 #include "trn/error.hpp"
 #include "trn/registry.hpp"
 
@@ -74,4 +77,47 @@ TEST(RealFlightPoses, BadRowNamesFileAndLine) {
     } catch (const trn::Error& e) {
         EXPECT_NE(std::string(e.what()).find(path + ":3:"), std::string::npos) << e.what();
     }
+}
+
+// The AIR folder written from the committed poses reads back with the truth equal to the poses,
+// every frame at the camera's size with an altitude that gives back the pose scale, and the
+// simulated magnetometer within its +-2 degree bound of the true heading.
+TEST(RealFlightAir, FolderReadsBackWithThePosesAsTruth) {
+    NEED_DATA();
+    const std::vector<trn::reg::PoseRow> rows = trn::reg::read_pose_rows(TRN_POSES_CSV);
+    std::vector<trn::GrayImage> frames;
+    for (const auto& r : rows) frames.push_back(trn::load_gray(data + "/realflight/" + r.frame));
+    const std::string dir = testing::TempDir() + "/realflight_air";
+    std::filesystem::remove_all(dir);
+    const trn::reg::RealAirOptions o;
+    trn::reg::write_real_air_folder(dir, rows, frames, o);
+
+    const trn::sim::FlightInfo info = trn::sim::read_flight_info(dir + "/flight.json");
+    EXPECT_EQ(info.frames, rows.size());
+    EXPECT_EQ(info.camera.width, frames[0].width);
+    trn::sim::AirReader reader(dir);
+    trn::sim::AirRecord r;
+    std::size_t k = 0;
+    for (; reader.next(r); ++k) {
+        ASSERT_LT(k, rows.size());
+        const trn::Pose& p = rows[k].pose;
+        EXPECT_EQ(r.filename, rows[k].frame);
+        EXPECT_NEAR(r.map_x, p.x, 1e-3);
+        EXPECT_NEAR(r.map_y, p.y, 1e-3);
+        const double truth = trn::sim::heading_from_quaternion(r.orientation);
+        EXPECT_NEAR(std::remainder(truth - p.yaw, 2 * M_PI), 0, 1e-6) << r.filename;
+        EXPECT_LE(std::abs(std::remainder(trn::sim::heading_from_quaternion(r.imu) - truth, 2 * M_PI)), 2.0 * M_PI / 180 + 1e-9);
+        const double scale = trn::sim::template_scale(info.camera, r.relative_altitude_m, info.metres_per_pixel);
+        EXPECT_NEAR(scale, p.scale * frames[k].width / frames[0].width, 1e-6) << r.filename;
+        const trn::GrayImage img = reader.load_image(r);
+        EXPECT_EQ(img.width, info.camera.width);
+        EXPECT_EQ(img.height, info.camera.height);
+        // Odometry: near the true displacement (3 % scale error, 1 degree bias), never identical.
+        const double true_e = (p.x - rows[0].pose.x) * o.metres_per_pixel, true_n = -(p.y - rows[0].pose.y) * o.metres_per_pixel;
+        EXPECT_NEAR(r.pose_m.x, true_e, 1e-3);
+        EXPECT_NEAR(r.pose_m.y, true_n, 1e-3);
+        EXPECT_LE(std::hypot(r.svo_m.x - true_e, r.svo_m.y - true_n), 0.1 * std::hypot(true_e, true_n) + 5) << r.filename;
+        if (k > 0) EXPECT_GT(std::hypot(r.svo_m.x - true_e, r.svo_m.y - true_n), 0.0) << r.filename;
+    }
+    EXPECT_EQ(k, rows.size());
 }
