@@ -66,6 +66,7 @@ void add_register_command(CLI::App& app) {
     cmd->callback([a] {
         if (a->min_scale > a->max_scale) throw Error("--min-scale must not exceed --max-scale");
         if (!a->out.empty()) io::check_output_file(a->out, "--out");
+        const std::vector<reg::PoseRow> rows = a->verify.empty() ? std::vector<reg::PoseRow>{} : reg::read_pose_rows(a->verify);
         const GrayImage map = load_gray(a->map);
         std::vector<GrayImage> frames;
         std::vector<std::string> names;
@@ -95,7 +96,7 @@ void add_register_command(CLI::App& app) {
         };
 
         if (!a->verify.empty()) {
-            for (const reg::PoseRow& row : reg::read_pose_rows(a->verify)) {
+            for (const reg::PoseRow& row : rows) {
                 std::size_t k = 0;
                 while (k < names.size() && names[k] != row.frame) ++k;
                 if (k == names.size()) throw Error(a->verify + ": frame '" + row.frame + "' is not among the given frames");
