@@ -2,11 +2,11 @@
 // Finding the poses of consecutive real camera frames on an orthophoto (`trnkit register`), and
 // checking a set of poses: each must be the single best NCC within a window around it.
 //
-// Method: frame-to-frame similarity motion (ORB + RANSAC, same season, large overlap) chained to
-// frame 0; a coarse global search of the whole chained strip over yaw and scale (a mosaic of all
-// frames matched against the map, so a long straight road cannot fool it); a joint refinement of
-// the anchor pose and scale with trnkit's own scorer (mean NCC over all frames); then a small
-// per-frame NCC refinement around each chained pose.
+// Method: frame-to-frame motion (ORB + RANSAC, same season, large overlap) chained to frame 0; a
+// coarse global search of the whole chained strip over yaw and scale (a mosaic of all frames
+// matched against the map, so a long straight road cannot fool it); a joint refinement of the
+// anchor pose and scale with trnkit's own scorer (mean NCC over all frames); then, frame by frame,
+// a local NCC refinement around the previous frame's pose moved by the frame motion.
 #include <optional>
 #include <string>
 #include <vector>
