@@ -14,5 +14,6 @@ void add_simulate_command(CLI::App& app);  // cmd_simulate.cpp (flight simulator
 void add_check_command(CLI::App& app);     // cmd_check.cpp    (cross-backend scoring table)
 void add_localize_command(CLI::App& app);  // cmd_localize.cpp (DPC-PFL on an AIR folder)
 void add_experiment_command(CLI::App& app);  // cmd_experiment.cpp (dissertation studies)
+void add_register_command(CLI::App& app);  // cmd_register.cpp (poses of real frames on a map)
 
 }  // namespace trn::cli

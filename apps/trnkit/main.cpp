@@ -24,6 +24,7 @@ int run(int argc, char** argv) {
     trn::cli::add_check_command(app);
     trn::cli::add_localize_command(app);
     trn::cli::add_experiment_command(app);
+    trn::cli::add_register_command(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
