@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <istream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <utility>
 
@@ -185,6 +186,18 @@ int int_field(const nlohmann::json& j, const char* key, int lo, int hi, const st
     return static_cast<int>(v.get<long long>());
 }
 
+// An unsigned field of flight.json up to hi (absent: 0); 1e300, -1 or 2.5 name the field instead of
+// being cast (a float-to-integer cast out of range is undefined behaviour).
+std::uint64_t uint_field(const nlohmann::json& j, const char* key, std::uint64_t hi, const std::string& where) {
+    if (!j.contains(key)) return 0;
+    const nlohmann::json& v = j.at(key);
+    if (!v.is_number_unsigned() && !(v.is_number_integer() && v.get<long long>() >= 0))
+        throw Error(where + key + " " + v.dump() + " must be a whole number in [0, " + std::to_string(hi) + "]");
+    const std::uint64_t u = v.get<std::uint64_t>();
+    if (u > hi) throw Error(where + key + " " + v.dump() + " must be a whole number in [0, " + std::to_string(hi) + "]");
+    return u;
+}
+
 // A real field within the interval from lo to hi; `open` ends are excluded.
 enum class Ends { closed, open_low, open_both };
 double real_field(const nlohmann::json& j, const char* key, double lo, double hi, Ends ends, const std::string& where) {
@@ -224,8 +237,8 @@ FlightInfo read_flight_info(const std::string& path) {
         for (auto [key, year] : {std::pair{"map_year", &info.map_year}, std::pair{"rendered_year", &info.rendered_year}})
             if (j.contains(key) && (*year = int_field(j, key, 0, 3000, where)) != 0 && *year < 1900)
                 throw Error(where + key + " " + std::to_string(*year) + " must be 0 (unknown) or a year from 1900");
-        info.seed = j.value("seed", std::uint64_t{0});
-        info.frames = j.value("frames", std::size_t{0});
+        info.seed = uint_field(j, "seed", std::numeric_limits<std::uint64_t>::max(), where);
+        info.frames = static_cast<std::size_t>(uint_field(j, "frames", 100'000'000, where));
     } catch (const nlohmann::json::exception& e) {
         throw Error(path + ": not a valid flight description (" + e.what() + ")");
     }

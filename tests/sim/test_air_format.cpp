@@ -242,6 +242,14 @@ TEST(AirFormat, FlightInfoRefusesAbsurdCameraFpsAndResolution) {
               std::string::npos);
     EXPECT_NE(error_for(R"({"metres_per_pixel": 1, )" + cam + R"(, "map_year": 12})").find(path + ": map_year 12 must be 0 (unknown)"),
               std::string::npos);
+    // Seed and frame count: never a float-to-integer cast (1e300 was undefined behaviour).
+    EXPECT_EQ(error_for(R"({"metres_per_pixel": 1, )" + cam + R"(, "seed": 18446744073709551615, "frames": 16})"), "");
+    EXPECT_NE(error_for(R"({"metres_per_pixel": 1, )" + cam + R"(, "seed": 1e300})").find(path + ": seed 1e+300 must be a whole number"),
+              std::string::npos);
+    EXPECT_NE(error_for(R"({"metres_per_pixel": 1, )" + cam + R"(, "seed": -1})").find(path + ": seed -1 must be a whole number"),
+              std::string::npos);
+    EXPECT_NE(error_for(R"({"metres_per_pixel": 1, )" + cam + R"(, "frames": 2.5})").find(path + ": frames 2.5 must be a whole number"),
+              std::string::npos);
     std::filesystem::remove_all(dir);
 }
 
