@@ -95,7 +95,7 @@ std::string mutate(std::string s, const std::vector<std::string>& seeds, const s
 // The input under test, written to fuzz-crash-input by the handler below when it crashes.
 const std::string* g_current = nullptr;
 
-extern "C" void save_crash_input(int sig) {
+void save_current_input() {
     if (g_current) {
         const int fd = ::open("fuzz-crash-input", O_WRONLY | O_CREAT | O_TRUNC, 0644);
         if (fd >= 0) {
@@ -104,13 +104,33 @@ extern "C" void save_crash_input(int sig) {
         }
         static const char msg[] = "replay: the crashing input is in fuzz-crash-input\n";
         if (::write(2, msg, sizeof msg - 1) < 0) { /* as above */ }
+        g_current = nullptr;
     }
+}
+
+extern "C" void save_crash_input(int sig) {
+    save_current_input();
     std::signal(sig, SIG_DFL);
     std::raise(sig);
 }
 
+// Sanitizers end the process their own way, past any signal handler: there every input is saved
+// before it runs (slower, and only in those builds).
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_UNDEFINED__)
+constexpr bool kSaveEveryInput = true;
+#else
+constexpr bool kSaveEveryInput = false;
+#endif
+
 void feed(const std::string& s) {
     g_current = &s;
+    if (kSaveEveryInput) {
+        const int fd = ::open("fuzz-crash-input", O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        if (fd >= 0) {
+            if (::write(fd, s.data(), s.size()) < 0) { /* best effort: the run itself matters more */ }
+            ::close(fd);
+        }
+    }
     LLVMFuzzerTestOneInput(reinterpret_cast<const std::uint8_t*>(s.data()), s.size());
     g_current = nullptr;
 }
@@ -164,6 +184,7 @@ int main(int argc, char** argv) {
     }
     Rng r{seed};
     for (long i = 0; i < runs; ++i) feed(mutate(seeds[r.below(seeds.size())], seeds, tokens, r, max_len));
+    if (kSaveEveryInput) std::remove("fuzz-crash-input");  // nothing crashed
     std::printf("replayed %zu seed file(s) and %ld mutation(s), %zu dictionary token(s)\n", files, runs, tokens.size());
     return 0;
 }

@@ -209,7 +209,12 @@ std::vector<std::string> to_argv(const Settings& st, const Case& c, Rng& r) {
 
 bool documented_exit(int code) { return code == 0 || code == 1 || code == 2 || (code >= 100 && code <= 114) || code == 127; }
 
-std::string first_line(const std::string& s) { return s.substr(0, s.find('\n')); }
+// The error a program ends with is its last line (progress output may come before it).
+std::string last_line(std::string s) {
+    while (!s.empty() && s.back() == '\n') s.pop_back();
+    const auto nl = s.rfind('\n');
+    return nl == std::string::npos ? s : s.substr(nl + 1);
+}
 
 // Message text with the sandbox, numbers and quoted values blurred, so one bug is one finding.
 std::string blur(std::string s, const std::string& root) {
@@ -241,7 +246,7 @@ std::vector<std::pair<std::string, std::string>> judge(const Case& c, const std:
         if (!name.empty() && name.back() == '=') name.pop_back();
         work_fuzzed = work_fuzzed || (plan_it != plans.end() && plan_it->second.work.count(name));
     }
-    if (r.signal) out.push_back({"FAIL crash", std::string("signal ") + strsignal(r.signal) + ": " + first_line(r.err)});
+    if (r.signal) out.push_back({"FAIL crash", std::string("signal ") + strsignal(r.signal) + ": " + last_line(r.err)});
     if (r.timed_out)
         out.push_back({work_fuzzed ? "FINDING unbounded work" : "FAIL hang",
                        "ran past the limit (" + std::to_string(static_cast<int>(r.wall_s)) + " s wall, " +
@@ -250,10 +255,14 @@ std::vector<std::pair<std::string, std::string>> judge(const Case& c, const std:
     for (std::string line; std::getline(watch, line);) out.push_back({"FAIL write outside the sandbox", line});
     if (pwned(s)) out.push_back({"FAIL executed argument text", "a file named PWNED appeared"});
     if (!r.signal && !r.timed_out) {
-        if (!documented_exit(r.exit_code)) out.push_back({"FAIL undocumented exit code", std::to_string(r.exit_code) + ": " + first_line(r.err)});
-        if (r.exit_code == 2) out.push_back({"FINDING exit 2 (unexpected error)", blur(first_line(r.err), s.root)});
+        if (!documented_exit(r.exit_code)) out.push_back({"FAIL undocumented exit code", std::to_string(r.exit_code) + ": " + last_line(r.err)});
+        if (r.exit_code == 2) out.push_back({"FINDING exit 2 (unexpected error)", blur(last_line(r.err), s.root)});
         if (r.exit_code == 1) {
-            const bool one_line = r.err.rfind("trnkit: error: ", 0) == 0 && r.err.find('\n') == r.err.size() - 1;
+            // Progress lines may come first; the error itself is the last line, whole, and only once.
+            std::string err = r.err;
+            while (!err.empty() && err.back() == '\n') err.pop_back();
+            const std::string last = last_line(err);
+            const bool one_line = last.rfind("trnkit: error: ", 0) == 0 && err.find("trnkit: error: ") == err.size() - last.size();
             if (!one_line) out.push_back({"FINDING error is not one line", blur(r.err.substr(0, 200), s.root)});
         }
         if (r.exit_code == 0)
