@@ -3,13 +3,13 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <type_traits>
 #include <utility>
 
 #include "sha256.hpp"
+#include "text_input.hpp"
 #include "trn/error.hpp"
 
 namespace trn::energy {
@@ -27,14 +27,6 @@ std::string default_platform(const MarkerFile& m) {
     if (!get("size").empty() && get("kernel") == "sobel") p += "/" + get("size");
     if (!get("particles").empty() && get("kernel") == "ncc") p += "/" + get("particles");
     return p;
-}
-
-std::string read_text(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error(path + ": cannot open");
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
 }
 
 // JSON has no NaN: a non-finite number would be a bug upstream, so refuse to write it.
@@ -111,7 +103,7 @@ RunReport integrate_run(const PowerTrace& trace, const MarkerFile& markers, cons
 
 RunReport integrate_files(const std::string& log_path, const std::string& format, const ParseOptions& opts, const std::string& markers_path,
                           const IntegrateRequest& q) {
-    const std::string log_text = read_text(log_path), marker_text = read_text(markers_path);
+    const std::string log_text = text::read_file(log_path), marker_text = text::read_file(markers_path, text::kMaxSmallInputBytes);
     const PowerTrace trace = parse_power_log(log_text, log_path, format, opts);
     const MarkerFile markers = parse_markers(marker_text, markers_path);
     RunReport r = integrate_run(trace, markers, q);
@@ -203,6 +195,6 @@ RunReport parse_run_report_json(const std::string& text, const std::string& name
     return r;
 }
 
-RunReport read_run_report(const std::string& path) { return parse_run_report_json(read_text(path), path); }
+RunReport read_run_report(const std::string& path) { return parse_run_report_json(text::read_file(path, text::kMaxSmallInputBytes), path); }
 
 }  // namespace trn::energy

@@ -6,6 +6,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "trn/energy/compare.hpp"
+#include "trn/energy/markers.hpp"
 #include "trn/energy/run_report.hpp"
 #include "trn/error.hpp"
 
@@ -57,6 +59,19 @@ TEST(RunReportReading, TheVersionFieldIsComparedWithoutACast) {
     EXPECT_NE(refusal(j).find("not a run report"), std::string::npos);
     j["trnkit_energy_run"] = 1.0;
     EXPECT_EQ(refusal(j), "accepted");
+}
+
+// `energy integrate --markers /dev/full` read zeros for ever (found by the CLI fuzzer): the readers
+// of marker files and run reports (and the power log `integrate` hashes) stop at a size limit.
+TEST(EndlessInput, MarkerAndRunReportReadersStopAtASizeLimit) {
+    try {
+        trn::energy::read_markers("/dev/full");  // reads as endless zeros
+        ADD_FAILURE() << "/dev/full read as markers";
+    } catch (const trn::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("/dev/full: larger than 64 MiB"), std::string::npos) << e.what();
+    }
+    EXPECT_THROW(trn::energy::read_run_report("/dev/zero"), trn::Error);
+    EXPECT_THROW(trn::energy::compare_files({"/dev/zero"}, {}), trn::Error);  // `energy compare /dev/zero` was OOM-killed
 }
 
 }  // namespace
