@@ -309,11 +309,15 @@ Settings parse_settings(int argc, char** argv) {
 std::vector<std::string> child_environment(const Settings& st, const std::string& root, const std::string& watch_log) {
     std::vector<std::string> env = {"PATH=/usr/local/bin:/usr/bin:/bin", "LC_ALL=C", "HOME=" + root + "/home", "TMPDIR=" + root + "/tmp",
                                     "XDG_CACHE_HOME=" + root + "/cache"};
-    std::string asan = "detect_leaks=0:verify_asan_link_order=0";
-    for (const char* keep : {"UBSAN_OPTIONS", "OCL_ICD_VENDORS", "OCL_ICD_FILENAMES", "LD_LIBRARY_PATH", "VK_ICD_FILENAMES", "POCL_DEVICES"})
+    // In a sanitizer build a report must end the run by a signal (abort), not by exit code 1,
+    // which would pass for a trn::Error; later options override the inherited ones.
+    std::string asan = "detect_leaks=0:verify_asan_link_order=0:abort_on_error=1", ubsan = "halt_on_error=1:abort_on_error=1";
+    for (const char* keep : {"OCL_ICD_VENDORS", "OCL_ICD_FILENAMES", "LD_LIBRARY_PATH", "VK_ICD_FILENAMES", "POCL_DEVICES"})
         if (const char* v = std::getenv(keep)) env.push_back(std::string(keep) + "=" + v);
     if (const char* v = std::getenv("ASAN_OPTIONS")) asan = std::string(v) + ":" + asan;
+    if (const char* v = std::getenv("UBSAN_OPTIONS")) ubsan = std::string(v) + ":" + ubsan;
     env.push_back("ASAN_OPTIONS=" + asan);
+    env.push_back("UBSAN_OPTIONS=" + ubsan);
     if (!st.watch.empty()) {
         env.push_back("LD_PRELOAD=" + st.watch);
         env.push_back("TRN_WATCH_ALLOW=" + root + ":/dev/null:/dev/dri:/dev/shm");
