@@ -1,14 +1,13 @@
 #pragma once
 // One fuzz input through a parser and everything downstream of it: a parse may refuse the input
 // with trn::Error, but it must never crash, and what it accepts must integrate to finite joules.
-// Shared by the libFuzzer targets and the replay driver used in CI.
+// Built as a libFuzzer target and as a ctest replay by fuzz/CMakeLists.txt (the marker file has
+// its own entry, fuzz/fuzz_markers.cpp).
 #include <cmath>
-#include <cstdint>
-#include <cstdio>
-#include <cstdlib>
 #include <string>
 #include <string_view>
 
+#include "fuzz_check.hpp"
 #include "trn/energy/integrate.hpp"
 #include "trn/energy/markers.hpp"
 #include "trn/energy/parsers.hpp"
@@ -16,19 +15,12 @@
 
 namespace trn::energy::fuzz {
 
-[[noreturn]] inline void violation(const char* what) {
-    std::fprintf(stderr, "fuzz: invariant broken: %s\n", what);
-    std::abort();
-}
+using trn::fuzz::violation;
 
 // Returns true when the parser accepted the input.
 inline bool run_one(const std::string& format, std::string_view input) {
     PowerTrace tr;
     try {
-        if (format == "markers") {
-            (void)parse_markers(input, "fuzz");
-            return true;
-        }
         tr = parse_power_log(input, "fuzz", format);
     } catch (const trn::Error&) {
         return false;  // a clear refusal is the right answer to garbage

@@ -1,5 +1,5 @@
-// libFuzzer entry for one parser, chosen at build time by TRN_FUZZ_FORMAT (a power_log_formats()
-// name, "auto" or "markers"). The replay driver links the same entry for CI builds with gcc.
+// libFuzzer entry for one power-log parser, chosen at build time by TRN_FUZZ_FORMAT (a
+// power_log_formats() name or "auto"). fuzz/replay_main.cpp links the same entry for gcc CI builds.
 #include <cstddef>
 #include <cstdint>
 

@@ -2,12 +2,12 @@
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "sha256.hpp"
+#include "text_input.hpp"
 #include "trn/error.hpp"
 
 namespace trn::energy {
@@ -108,11 +108,8 @@ Comparison compare_runs(std::vector<RunInput> inputs, const CompareOptions& o) {
 Comparison compare_files(const std::vector<std::string>& paths, const CompareOptions& o) {
     std::vector<RunInput> inputs;
     for (const auto& path : paths) {
-        std::ifstream f(path, std::ios::binary);
-        if (!f) throw Error(path + ": cannot open");
-        std::ostringstream ss;
-        ss << f.rdbuf();
-        inputs.push_back({path, sha256_hex(ss.str()), parse_run_report_json(ss.str(), path)});
+        const std::string report = text::read_file(path, text::kMaxSmallInputBytes);  // not for ever from a device
+        inputs.push_back({path, sha256_hex(report), parse_run_report_json(report, path)});
     }
     return compare_runs(std::move(inputs), o);
 }

@@ -1,7 +1,6 @@
 #include "trn/energy/markers.hpp"
 
 #include <charconv>
-#include <fstream>
 #include <map>
 #include <sstream>
 #include <utility>
@@ -66,13 +65,7 @@ MarkerFile parse_markers(std::string_view input, const std::string& name) {
     return m;
 }
 
-MarkerFile read_markers(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error(path + ": cannot open");
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    return parse_markers(ss.str(), path);
-}
+MarkerFile read_markers(const std::string& path) { return parse_markers(text::read_file(path, text::kMaxSmallInputBytes), path); }
 
 std::string format_markers(const MarkerFile& m) {
     std::ostringstream os;

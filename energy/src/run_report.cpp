@@ -1,12 +1,15 @@
 #include "trn/energy/run_report.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <type_traits>
+#include <utility>
 
 #include "sha256.hpp"
+#include "text_input.hpp"
 #include "trn/error.hpp"
 
 namespace trn::energy {
@@ -26,18 +29,21 @@ std::string default_platform(const MarkerFile& m) {
     return p;
 }
 
-std::string read_text(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error(path + ": cannot open");
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
-
 // JSON has no NaN: a non-finite number would be a bug upstream, so refuse to write it.
 double finite(double v, const char* what) {
     if (!std::isfinite(v)) throw Error(std::string("run report: ") + what + " is not finite");
     return v;
+}
+
+// A count or id from a report: nlohmann's get<int>() on 1e300 or -1.5 is a float-to-int cast
+// with undefined behaviour, so anything but a whole number in the type's range is refused here.
+template <class Int>
+Int whole_number(const json& object, const char* key, const std::string& name) {
+    const json& v = object.at(key);
+    if (v.is_number_unsigned() && std::in_range<Int>(v.get<std::uint64_t>())) return static_cast<Int>(v.get<std::uint64_t>());
+    if (v.is_number_integer() && !v.is_number_unsigned() && std::in_range<Int>(v.get<std::int64_t>())) return static_cast<Int>(v.get<std::int64_t>());
+    throw Error(name + ": run report field \"" + key + "\" must be a whole number" + (std::is_signed_v<Int> ? "" : " >= 0") + " (got " +
+                v.dump().substr(0, 40) + ")");
 }
 
 }  // namespace
@@ -102,7 +108,7 @@ RunReport integrate_run(const PowerTrace& trace, const MarkerFile& markers, cons
 
 RunReport integrate_files(const std::string& log_path, const std::string& format, const ParseOptions& opts, const std::string& markers_path,
                           const IntegrateRequest& q) {
-    const std::string log_text = read_text(log_path), marker_text = read_text(markers_path);
+    const std::string log_text = text::read_file(log_path), marker_text = text::read_file(markers_path, text::kMaxSmallInputBytes);
     const PowerTrace trace = parse_power_log(log_text, log_path, format, opts);
     const MarkerFile markers = parse_markers(marker_text, markers_path);
     RunReport r = integrate_run(trace, markers, q);
@@ -164,18 +170,18 @@ RunReport parse_run_report_json(const std::string& text, const std::string& name
     }
     RunReport r;
     try {
-        if (j.value("trnkit_energy_run", 0) != 1) throw Error(name + ": not a run report (expected \"trnkit_energy_run\": 1, written by trnkit energy integrate)");
+        if (!j.is_object() || !j.contains("trnkit_energy_run") || j["trnkit_energy_run"] != 1) throw Error(name + ": not a run report (expected \"trnkit_energy_run\": 1, written by trnkit energy integrate)");
         r.platform = j.at("platform").get<std::string>();
         const auto& log = j.at("inputs").at("log");
         r.log_path = log.at("path"), r.log_sha256 = log.at("sha256"), r.log_format = log.at("format"), r.log_quantity = log.at("quantity");
-        r.sampling.samples = log.at("samples"), r.sampling.rate_hz = log.at("rate_hz"), r.resolution_w = log.at("resolution_w");
+        r.sampling.samples = whole_number<std::size_t>(log, "samples", name), r.sampling.rate_hz = log.at("rate_hz"), r.resolution_w = log.at("resolution_w");
         r.log_notes = log.at("notes").get<std::vector<std::string>>();
         r.parse_options = log.at("parse_options").get<std::map<std::string, std::string>>();
         const auto& mk = j.at("inputs").at("markers");
         r.markers_path = mk.at("path"), r.markers_sha256 = mk.at("sha256");
         r.marker_meta = mk.at("meta").get<std::map<std::string, std::string>>();
         const auto& c = j.at("config");
-        r.rule = c.at("rule"), r.clock = c.at("clock"), r.align_mode = c.at("align"), r.min_samples = c.at("min_samples");
+        r.rule = c.at("rule"), r.clock = c.at("clock"), r.align_mode = c.at("align"), r.min_samples = whole_number<std::size_t>(c, "min_samples", name);
         const auto& a = j.at("alignment");
         r.alignment.mapping.offset_s = a.at("offset_s"), r.alignment.mapping.drift = a.at("drift"), r.alignment.mapping.ref_s = a.at("ref_s");
         r.alignment.residual_s = a.at("residual_s"), r.alignment.contrast_w = a.at("contrast_w");
@@ -186,13 +192,13 @@ RunReport parse_run_report_json(const std::string& text, const std::string& name
         r.alignment.sync_contrast_w = a.value("sync_contrast_w", 0.0), r.alignment.sync_ratio = a.value("sync_ratio", 0.0);
         r.alignment.ambiguous = a.value("ambiguous", false), r.alignment.confidence = a.value("confidence", std::string());
         const auto& idle = j.at("idle");
-        r.idle_w = idle.at("w"), r.idle_first_w = idle.at("first_w"), r.idle_last_w = idle.at("last_w"), r.idle_segments = idle.at("segments");
+        r.idle_w = idle.at("w"), r.idle_first_w = idle.at("first_w"), r.idle_last_w = idle.at("last_w"), r.idle_segments = whole_number<std::size_t>(idle, "segments", name);
         r.warnings = j.at("warnings").get<std::vector<std::string>>();
         for (const auto& f : j.at("frames")) {
             ReportFrame rf;
             auto& e = rf.energy;
-            e.id = f.at("id"), e.start = f.at("start_s"), e.end = f.at("end_s"), e.gross_j = f.at("gross_j"), e.net_j = f.at("net_j");
-            e.error_j = f.at("error_j"), e.samples = f.at("samples"), e.flag = f.at("flag");
+            e.id = whole_number<int>(f, "id", name), e.start = f.at("start_s"), e.end = f.at("end_s"), e.gross_j = f.at("gross_j"), e.net_j = f.at("net_j");
+            e.error_j = f.at("error_j"), e.samples = whole_number<std::size_t>(f, "samples", name), e.flag = f.at("flag");
             rf.marker_ms = f.at("marker_ms"), rf.write_ms = f.at("write_ms"), rf.exec_ms = f.at("exec_ms"), rf.read_ms = f.at("read_ms");
             r.frames.push_back(rf);
         }
@@ -202,6 +208,6 @@ RunReport parse_run_report_json(const std::string& text, const std::string& name
     return r;
 }
 
-RunReport read_run_report(const std::string& path) { return parse_run_report_json(read_text(path), path); }
+RunReport read_run_report(const std::string& path) { return parse_run_report_json(text::read_file(path, text::kMaxSmallInputBytes), path); }
 
 }  // namespace trn::energy

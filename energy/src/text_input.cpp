@@ -4,6 +4,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <fstream>
 
 namespace trn::energy::text {
 
@@ -146,6 +147,20 @@ std::optional<double> parse_datetime(std::string_view s, bool* zone_known) {
 
 void fail(const std::string& source, std::size_t line, const std::string& why) {
     throw Error(source + ":" + std::to_string(line) + ": " + why);
+}
+
+std::string read_file(const std::string& path, std::size_t max_bytes) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error(path + ": cannot open");
+    std::string text;
+    char buf[1 << 16];
+    while (in.read(buf, sizeof buf) || in.gcount() > 0) {
+        text.append(buf, static_cast<std::size_t>(in.gcount()));
+        if (text.size() > max_bytes)
+            throw Error(path + ": larger than " + std::to_string(max_bytes >> 20) + " MiB (a device or not the right file?)");
+    }
+    if (in.bad()) throw Error(path + ": read error");
+    return text;
 }
 
 }  // namespace trn::energy::text
