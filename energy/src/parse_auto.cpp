@@ -1,6 +1,4 @@
 // Format names, recognition of a log from its text, and reading a log file.
-#include <fstream>
-#include <sstream>
 
 #include "text_input.hpp"
 #include "trn/energy/parsers.hpp"
@@ -79,12 +77,9 @@ PowerTrace parse_power_log(std::string_view input, const std::string& name, cons
     throw Error("--format '" + format + "': unknown (known: auto, " + list + ")");
 }
 
+// Read with a size limit: a device such as /dev/zero given as a log must not fill the memory.
 PowerTrace read_power_log(const std::string& path, const std::string& format, const ParseOptions& options) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error(path + ": cannot open");
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    return parse_power_log(ss.str(), path, format, options);
+    return parse_power_log(text::read_file(path), path, format, options);
 }
 
 }  // namespace trn::energy

@@ -2,8 +2,6 @@
 
 #include <array>
 #include <cstdint>
-#include <fstream>
-#include <sstream>
 
 #include "trn/error.hpp"
 
@@ -50,14 +48,6 @@ std::string sha256_hex(std::string_view data) {
     for (std::uint32_t v : h)
         for (int i = 28; i >= 0; i -= 4) out.push_back(hex[(v >> i) & 0xf]);
     return out;
-}
-
-std::string sha256_file(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error(path + ": cannot open to hash");
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    return sha256_hex(ss.str());
 }
 
 }  // namespace trn::energy

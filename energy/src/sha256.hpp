@@ -6,6 +6,4 @@
 
 namespace trn::energy {
 std::string sha256_hex(std::string_view data);
-// Hash of a file's bytes; throws trn::Error when it cannot be read.
-std::string sha256_file(const std::string& path);
 }  // namespace trn::energy

@@ -8,6 +8,7 @@
 
 #include "trn/energy/compare.hpp"
 #include "trn/energy/markers.hpp"
+#include "trn/energy/parsers.hpp"
 #include "trn/energy/run_report.hpp"
 #include "trn/error.hpp"
 
@@ -72,6 +73,16 @@ TEST(EndlessInput, MarkerAndRunReportReadersStopAtASizeLimit) {
     }
     EXPECT_THROW(trn::energy::read_run_report("/dev/zero"), trn::Error);
     EXPECT_THROW(trn::energy::compare_files({"/dev/zero"}, {}), trn::Error);  // `energy compare /dev/zero` was OOM-killed
+}
+
+// Fuzz finding 15: `energy inspect /dev/zero` read the whole device into memory.
+TEST(EndlessInput, PowerLogReaderStopsAtASizeLimit) {
+    try {
+        trn::energy::read_power_log("/dev/zero", "auto", {});
+        ADD_FAILURE() << "/dev/zero read as a power log";
+    } catch (const trn::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("/dev/zero: larger than 256 MiB"), std::string::npos) << e.what();
+    }
 }
 
 }  // namespace
