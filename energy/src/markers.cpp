@@ -1,6 +1,7 @@
 #include "trn/energy/markers.hpp"
 
 #include <charconv>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <utility>
@@ -44,6 +45,7 @@ MarkerFile parse_markers(std::string_view input, const std::string& name) {
         std::int64_t v[5];
         for (int k = 0; k < 5; ++k)
             if (!to_int(f[1 + k], v[k])) text::fail(name, l.number, "field " + std::to_string(k + 2) + " is not an integer");
+        if (v[0] < 0 || v[0] > std::numeric_limits<int>::max()) text::fail(name, l.number, "frame id " + std::to_string(v[0]) + " is outside [0, 2^31-1]");
         r.id = static_cast<int>(v[0]);
         r.mono_start_ns = v[1], r.mono_end_ns = v[2], r.real_start_ns = v[3], r.real_end_ns = v[4];
         if (r.mono_end_ns < r.mono_start_ns || r.real_end_ns < r.real_start_ns) text::fail(name, l.number, "end comes before start");

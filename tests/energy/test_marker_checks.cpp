@@ -41,6 +41,20 @@ TEST(MarkerChecks, DuplicateFrameIdIsRefused) {
         << why;
 }
 
+// Fuzz finding 12: an id beyond int kept its low 32 bits (4294967296 became frame 0).
+TEST(MarkerChecks, FrameIdBeyondIntIsRefused) {
+    std::string text = format_markers(test::make_timeline(5, 0.05, 0.05).markers);
+    const std::size_t at = text.find("\nframe,2,");
+    ASSERT_NE(at, std::string::npos) << text;
+    text.replace(at, 9, "\nframe,4294967296,");
+    try {
+        parse_markers(text, "m.csv");
+        ADD_FAILURE() << "id 4294967296 accepted";
+    } catch (const trn::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("frame id 4294967296 is outside [0, 2^31-1]"), std::string::npos) << e.what();
+    }
+}
+
 TEST(MarkerChecks, OverlappingFramesAreRefused) {
     auto m = test::make_timeline(5, 0.05, 0.05).markers;
     const std::size_t i = row_of(m, "frame", 3);
