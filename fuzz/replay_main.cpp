@@ -22,18 +22,13 @@
 #include <string>
 #include <vector>
 
+#include "xorshift_rng.hpp"
+
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size);
 
 namespace {
 
-struct Rng {
-    std::uint64_t s;
-    std::uint64_t next() {
-        s ^= s << 13, s ^= s >> 7, s ^= s << 17;
-        return s;
-    }
-    std::size_t below(std::size_t n) { return n ? static_cast<std::size_t>(next() % n) : 0; }
-};
+using Rng = trn::fuzz::XorshiftRng;
 
 std::string read_all(const std::filesystem::path& p) {
     std::ifstream f(p, std::ios::binary);

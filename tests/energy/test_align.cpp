@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "run_trnkit.hpp"
+#include "../cli/cli_process.hpp"
 #include "synthetic_run.hpp"
 #include "trn/energy/align.hpp"
 #include "trn/error.hpp"
@@ -167,11 +167,11 @@ TEST(Align, CliRefusesAmbiguousUnlessInsisted) {
     std::ofstream(dir / "p.log") << format_trnkit_power(sample_trace(tl.markers, TraceClock{-ref + 1.0, 0, ref}, 0, 4.5, 1e-3, 2.0, 3.0, 0.05));
     const std::string base = "energy integrate " + (dir / "p.log").string() + " --markers " + (dir / "m.csv").string() + " --align auto --json " +
                              (dir / "r.json").string();
-    const auto refused = test::run_trnkit(base);
+    const auto refused = trn::test::run_trnkit(base);
     EXPECT_NE(refused.code, 0) << refused.output;
     EXPECT_NE(refused.output.find("ambiguous"), std::string::npos) << refused.output;
     EXPECT_FALSE(fs::exists(dir / "r.json"));
-    const auto insisted = test::run_trnkit(base + " --insist");
+    const auto insisted = trn::test::run_trnkit(base + " --insist");
     EXPECT_EQ(insisted.code, 0) << insisted.output;
     EXPECT_NE(insisted.output.find("alignment confidence:"), std::string::npos) << insisted.output;
     EXPECT_NE(insisted.output.find("warning: AMBIGUOUS"), std::string::npos) << insisted.output;

@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "run_trnkit.hpp"
+#include "../cli/cli_process.hpp"
 #include "synthetic_run.hpp"
 #include "trn/energy/compare.hpp"
 #include "trn/error.hpp"
@@ -54,10 +54,10 @@ TEST(CompareRepeats, CliRefusesTheSameFileTwiceAndACopy) {
     std::ofstream(a) << run_report_json(measured(3.0));
     std::ofstream(b) << run_report_json(measured(2.2));
     fs::copy_file(a, copy);
-    const auto ok = test::run_trnkit("energy compare " + a + " " + b + " --no-plots -o " + (dir / "ok").string());
+    const auto ok = trn::test::run_trnkit("energy compare " + a + " " + b + " --no-plots -o " + (dir / "ok").string());
     EXPECT_EQ(ok.code, 0) << ok.output;
     for (const std::string& second : {a, copy}) {
-        const auto r = test::run_trnkit("energy compare " + a + " " + b + " " + second + " --no-plots -o " + (dir / "out").string());
+        const auto r = trn::test::run_trnkit("energy compare " + a + " " + b + " " + second + " --no-plots -o " + (dir / "out").string());
         EXPECT_NE(r.code, 0) << r.output;
         EXPECT_NE(r.output.find(a + " and " + second + " are the same run report"), std::string::npos) << r.output;
         EXPECT_FALSE(fs::exists(dir / "out" / "tables.md"));

@@ -10,7 +10,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "run_trnkit.hpp"
+#include "../cli/cli_process.hpp"
 #include "synthetic_run.hpp"
 #include "trn/energy/parsers.hpp"
 #include "trn/energy/run_report.hpp"
@@ -77,7 +77,7 @@ TEST(ImplausiblePower, CliWarnsOnStderr) {
     const std::string expect = "warning: " + log + ": dropped 1 implausible power reading(s)";
     for (const std::string& args : {"energy integrate " + log + " --markers " + markers + " --json " + json, "energy inspect " + log,
                                     "energy integrate-span " + log + " --start " + std::to_string(ref) + " --end " + std::to_string(ref + 1)}) {
-        const auto r = test::run_trnkit(args);
+        const auto r = trn::test::run_trnkit(args);
         EXPECT_EQ(r.code, 0) << args << "\n" << r.output;
         EXPECT_NE(r.output.find(expect), std::string::npos) << args << "\n" << r.output;
     }

@@ -39,6 +39,7 @@
 #include "cli_fuzz_plan.hpp"
 #include "cli_options.hpp"
 #include "sandboxed_run.hpp"
+#include "../../fuzz/xorshift_rng.hpp"
 #include "trn/io/atomic_file.hpp"
 
 namespace fs = std::filesystem;
@@ -46,15 +47,7 @@ using namespace trn::fuzz;
 
 namespace {
 
-struct Rng {
-    std::uint64_t s;
-    std::uint64_t next() {
-        s ^= s << 13, s ^= s >> 7, s ^= s << 17;
-        return s;
-    }
-    std::size_t below(std::size_t n) { return n ? static_cast<std::size_t>(next() % n) : 0; }
-    bool chance(int percent) { return below(100) < static_cast<std::size_t>(percent); }
-};
+using Rng = XorshiftRng;
 
 struct Settings {
     std::string trnkit, watch, report, corpus = TRN_FUZZ_CORPUS_DIR;
