@@ -100,7 +100,7 @@ void demo(const DemoArgs& a) {
     io::open_output_folder(out, "demo", force);
     filter::write_rows_csv(out + "/localization.csv", result.rows);
     filter::write_summary_json(out + "/summary.json", result.summary,
-                               {{"backend", backend->info().name}, {"conversion", cfg.conversion.to_string()},
+                               {{"backend", backend->info().name}, {"device", backend->info().device}, {"conversion", cfg.conversion.to_string()},
                                 {"sampling", filter::to_string(cfg.sampling)}, {"scenario", preset.name},
                                 {"scoring_density", a.sparse < 1 ? "random " + std::to_string(a.sparse) : "dense"}},
                                filter::with_lock_numbers(result.summary, {{"seed", static_cast<double>(a.seed)}, {"filter_rate_hz", preset.fps / stride},

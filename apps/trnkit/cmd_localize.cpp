@@ -1,7 +1,10 @@
 // `trnkit localize`: runs the DPC-PFL particle filter over an AIR flight folder and writes the
 // per-step CSV, the summary JSON and the plots (trajectories on the map, error over distance).
+#include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <optional>
+#include <utility>
 #include <filesystem>
 #include <iostream>
 
@@ -28,9 +31,54 @@ struct LocalizeArgs {
     double mpp = 0, rate_hz = 5, sparse = 1;
     std::size_t particles = 1000, min_particles = 100, max_particles = 2000;
     int template_width = 160;
+    // Start prior. 50 m, not the dissertation's 300 m: localize hands over from a GNSS fix that was
+    // good until it was lost, so the start is known to metres; 300 m mostly costs mean error.
+    double init_radius_m = 50, reinit_radius_m = 300, heading_sd_deg = NAN, start_heading_deg = NAN;
+    std::string start, start_latlon;  // "X,Y" map px / "LAT,LON" degrees, checked at parse time
     bool no_plots = false, force = false;
     FilterModelArgs model;
 };
+
+// "A,B" as two finite reals, or nothing.
+std::optional<std::pair<double, double>> parse_pair(const std::string& text) {
+    const std::size_t comma = text.find(',');
+    if (comma == std::string::npos) return std::nullopt;
+    double v[2];
+    const std::string parts[2] = {text.substr(0, comma), text.substr(comma + 1)};
+    for (int i = 0; i < 2; ++i) {
+        const auto [ptr, ec] = std::from_chars(parts[i].data(), parts[i].data() + parts[i].size(), v[i]);
+        if (parts[i].empty() || ec != std::errc() || ptr != parts[i].data() + parts[i].size() || !std::isfinite(v[i])) return std::nullopt;
+    }
+    return std::pair{v[0], v[1]};
+}
+
+// CLI11 check: two comma-separated reals, the first within [lo1, hi1], the second within [lo2, hi2].
+CLI::Validator pair_in(double lo1, double hi1, double lo2, double hi2, const std::string& what) {
+    return CLI::Validator(
+        [=](std::string& text) -> std::string {
+            const auto p = parse_pair(text);
+            if (!p) return "expected " + what + " (two numbers separated by a comma), got '" + text.substr(0, 40) + "'";
+            if (p->first < lo1 || p->first > hi1 || p->second < lo2 || p->second > hi2)
+                return text.substr(0, 40) + " is outside [" + std::to_string(lo1) + ", " + std::to_string(hi1) + "] x [" +
+                       std::to_string(lo2) + ", " + std::to_string(hi2) + "]";
+            return "";
+        },
+        what);
+}
+
+// Map pixel of a latitude / longitude: the inverse of sim::map_pixel_to_latlon's projection.
+std::pair<double, double> latlon_to_map_pixel(const sim::GeoOrigin& o, double mpp, double lat, double lon) {
+    constexpr double kEarthRadius = 6378137.0, kDeg = 180.0 / 3.14159265358979323846;
+    const double south = (o.latitude_deg - lat) / kDeg * kEarthRadius;
+    const double east = (lon - o.longitude_deg) / kDeg * kEarthRadius * std::cos(o.latitude_deg / kDeg);
+    return {east / mpp, south / mpp};
+}
+
+// Options left at "not given" (NaN) are left out of summary.json rather than written as null.
+std::map<std::string, double> without_unset(std::map<std::string, double> numbers) {
+    std::erase_if(numbers, [](const auto& kv) { return std::isnan(kv.second); });
+    return numbers;
+}
 
 void progress_bar(std::size_t done, std::size_t total) { draw_progress(done, total, "steps"); }
 
@@ -49,6 +97,18 @@ void localize(const LocalizeArgs& a) {
     if (map_path.empty()) throw Error("--map: flight.json names no map; give --map FILE");
     const double mpp = a.mpp > 0 ? a.mpp : info.metres_per_pixel;
     const sim::Map map = sim::load_map(map_path, mpp);
+    if (!a.start.empty() && !a.start_latlon.empty()) throw Error("--start and --start-latlon: give one of them, not both");
+    double start_x = NAN, start_y = NAN;  // NaN: the first row's MapX/MapY
+    if (!a.start.empty()) std::tie(start_x, start_y) = *parse_pair(a.start);
+    if (!a.start_latlon.empty()) {
+        if (!info.origin) throw Error("--start-latlon: " + info_path + " has no geo origin; give --start X,Y in map pixels instead");
+        const auto [lat, lon] = *parse_pair(a.start_latlon);
+        std::tie(start_x, start_y) = latlon_to_map_pixel(*info.origin, mpp, lat, lon);
+    }
+    if (std::isfinite(start_x) && !(start_x >= 0 && start_x < map.image.width && start_y >= 0 && start_y < map.image.height))
+        throw Error((a.start.empty() ? "--start-latlon " + a.start_latlon : "--start " + a.start) + ": map pixel " + std::to_string(start_x) +
+                    "," + std::to_string(start_y) + " is outside the " + std::to_string(map.image.width) + "x" +
+                    std::to_string(map.image.height) + " px map");
 
     std::unique_ptr<Backend> backend;
     if (a.backend == "fastest") {
@@ -69,6 +129,9 @@ void localize(const LocalizeArgs& a) {
     cfg.min_particles = a.min_particles;
     cfg.max_particles = a.max_particles;
     cfg.seed = a.seed;
+    cfg.init_radius_m = a.init_radius_m;
+    cfg.reinit_radius_m = a.reinit_radius_m;
+    cfg.init_heading_sd_deg = a.heading_sd_deg;
     apply_filter_model_options(a.model, cfg);
     filter::ParticleFilter pf(scorer, cfg);
 
@@ -82,20 +145,31 @@ void localize(const LocalizeArgs& a) {
               << cfg.conversion.to_string() << ", " << filter::to_string(cfg.sampling) << " sampling, seed " << a.seed << "\n";
     filter::LocalizationResult result;
     try {
-        result = filter::run_localization(source, pf, progress_bar);
+        result = filter::run_localization(source, pf, progress_bar, start_x, start_y, a.start_heading_deg * 3.14159265358979323846 / 180);
     } catch (const Error& e) {
         if (std::string(e.what()).rfind(a.dataset, 0) == 0) throw;  // the flight source's own errors name their place
         throw Error(source.position() + ": " + e.what());           // which row of the flight the library choked on
     }
 
+    // The start actually used, for the record (the first row's truth when not given).
+    const double used_start_x = std::isfinite(start_x) || result.rows.empty() ? start_x : result.rows.front().truth_x;
+    const double used_start_y = std::isfinite(start_y) || result.rows.empty() ? start_y : result.rows.front().truth_y;
     io::open_output_folder(out, "localize", a.force);
     filter::write_rows_csv(out + "/localization.csv", result.rows);
     filter::write_summary_json(out + "/summary.json", result.summary,
-                               {{"backend", backend->info().name}, {"conversion", cfg.conversion.to_string()},
-                                {"sampling", filter::to_string(cfg.sampling)}, {"dataset", a.dataset},
+                               {{"backend", backend->info().name}, {"device", backend->info().device},
+                                {"backend_requested", a.backend}, {"conversion", cfg.conversion.to_string()},
+                                {"sampling", filter::to_string(cfg.sampling)}, {"dataset", a.dataset}, {"map", map_path},
+                                {"start", a.start.empty() && a.start_latlon.empty() ? "first row's MapX,MapY" : !a.start.empty() ? "--start " + a.start : "--start-latlon " + a.start_latlon},
+                                {"start_heading", std::isnan(a.start_heading_deg) ? "first magnetometer reading" : "--start-heading-deg"},
                                 {"scoring_density", a.sparse < 1 ? "random " + std::to_string(a.sparse) : "dense"}},
-                               filter::with_lock_numbers(result.summary, {{"seed", static_cast<double>(a.seed)}, {"filter_rate_hz", info.fps / stride},
-                                {"template_width", static_cast<double>(a.template_width)}}));
+                               without_unset(filter::with_lock_numbers(result.summary, {{"seed", static_cast<double>(a.seed)}, {"filter_rate_hz", info.fps / stride},
+                                {"init_radius_m", cfg.init_radius_m}, {"reinit_radius_m", cfg.reinit_radius_m},
+                                {"start_x", used_start_x}, {"start_y", used_start_y}, {"particles", static_cast<double>(a.particles)},
+                                {"min_particles", static_cast<double>(a.min_particles)}, {"max_particles", static_cast<double>(a.max_particles)},
+                                {"rate_hz", a.rate_hz}, {"sparse", a.sparse}, {"metres_per_pixel", mpp},
+                                {"start_heading_deg", a.start_heading_deg}, {"heading_sd_deg", cfg.init_heading_sd_deg},
+                                {"template_width", static_cast<double>(a.template_width)}})));
     std::cout << filter::format_summary(result.summary) << filter::format_lock_summary(result.summary);
     std::cout << "per-step CSV: " << out << "/localization.csv\nsummary JSON: " << out << "/summary.json\n";
     if (!a.no_plots) {
@@ -129,6 +203,22 @@ void add_localize_command(CLI::App& app) {
         ->transform(whole_in(8, kMaxTemplateWidth));
     cmd->add_option("--sparse", a->sparse, "Share of template pixels scored (1 = dense)")->capture_default_str()->check(real_in(1e-4, 1.0));
     cmd->add_option("--out", a->out, "Output folder (default: DATASET/localize)");
+    cmd->add_option("--init-radius-m", a->init_radius_m,
+                    "Particles start uniform within this radius (m) of the start; 50 m suits a handover after GNSS loss, "
+                    "where the last fix is good to metres (the dissertation's 300 m assumes no fix)")
+        ->capture_default_str()
+        ->check(real_in(0, 1e5, Open::low));
+    cmd->add_option("--reinit-radius-m", a->reinit_radius_m, "Radius (m) of the re-initialisation around the last estimate when every weight collapses")
+        ->capture_default_str()
+        ->check(real_in(0, 1e5, Open::low));
+    cmd->add_option("--start", a->start, "Start position X,Y in map pixels (default: the first row's MapX,MapY; required without them)")
+        ->check(pair_in(0, 1e7, 0, 1e7, "X,Y"));
+    cmd->add_option("--start-latlon", a->start_latlon, "Start position LAT,LON in degrees (needs a geo origin in flight.json)")
+        ->check(pair_in(-90, 90, -180, 180, "LAT,LON"));
+    cmd->add_option("--start-heading-deg", a->start_heading_deg, "Initial heading prior, degrees clockwise from north (default: the first magnetometer reading)")
+        ->check(real_in(-360, 360));
+    cmd->add_option("--heading-sd-deg", a->heading_sd_deg, "Spread (sd, degrees) of the initial headings (default: --motion-eps-rot)")
+        ->check(real_in(0, 360));
     cmd->add_flag("--no-plots", a->no_plots, "Skip the gnuplot step");
     cmd->add_flag("--force", a->force, "Write into a non-empty folder that is not an earlier output of localize");
     add_filter_model_options(*cmd, a->model);

@@ -1,5 +1,6 @@
 #include "trn/filter/backend_choice.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -7,6 +8,23 @@
 #include "trn/registry.hpp"
 
 namespace trn::filter {
+
+std::vector<std::string> preferred_backend_order(const std::vector<DeviceInfo>& devices) {
+    auto rank = [](const DeviceInfo& d) {
+        if (d.type == "gpu") return d.family == "opencl" ? 0 : d.family == "vulkan" ? 1 : 2;
+        if (d.family == "cpu") return 3;
+        if (d.family == "cpu-ref") return 5;
+        return 4;
+    };
+    std::vector<DeviceInfo> sorted = devices;
+    std::stable_sort(sorted.begin(), sorted.end(), [&](const DeviceInfo& a, const DeviceInfo& b) {
+        return rank(a) != rank(b) ? rank(a) < rank(b) : a.name < b.name;
+    });
+    std::vector<std::string> names;
+    for (const DeviceInfo& d : sorted)
+        if (d.family != "cpu-ref" || sorted.size() == 1) names.push_back(d.name);
+    return names;
+}
 
 std::unique_ptr<Backend> create_fastest_backend(std::vector<BackendTiming>* timings) {
     // A textured test map and template; timing only, the values do not matter.
@@ -20,11 +38,10 @@ std::unique_ptr<Backend> create_fastest_backend(std::vector<BackendTiming>* timi
     for (std::size_t i = 0; i < poses.size(); ++i) poses[i] = {200.0f + i % 50, 200.0f + i / 50 % 50, 0.01f * (i % 30), 1.4f};
     std::vector<ParticleScore> out(poses.size());
 
-    std::vector<std::string> names = default_registry().available();
-    if (names.size() > 1) std::erase(names, std::string("cpu-ref"));
-    std::unique_ptr<Backend> best;
-    double best_ms = 1e300;
-    for (const std::string& name : names) {
+    std::vector<DeviceInfo> devices;
+    for (const FamilyStatus& f : default_registry().status()) devices.insert(devices.end(), f.devices.begin(), f.devices.end());
+    std::unique_ptr<Backend> chosen;  // the first usable one in preference order, never the quickest of this run
+    for (const std::string& name : preferred_backend_order(devices)) {
         std::unique_ptr<Backend> b;
         double ms = 0;
         try {
@@ -39,10 +56,10 @@ std::unique_ptr<Backend> create_fastest_backend(std::vector<BackendTiming>* timi
             continue;  // listed but not usable: skip it, the others still compete
         }
         if (timings) timings->push_back({name, ms});
-        if (ms < best_ms) best_ms = ms, best = std::move(b);
+        if (!chosen) chosen = std::move(b);
     }
-    if (!best) throw BackendUnavailable("no usable scoring backend in this build");
-    return best;
+    if (!chosen) throw BackendUnavailable("no usable scoring backend in this build");
+    return chosen;
 }
 
 }  // namespace trn::filter

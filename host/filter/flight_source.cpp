@@ -49,7 +49,8 @@ void AirFlightSource::check_rows(MapExtent map) {
         if (!(r.relative_altitude_m > 0 && r.relative_altitude_m <= kMaxAltitudeM))
             throw Error(at + "RelativeAltitude " + number(r.relative_altitude_m) + " m is not a flight altitude (expected (0, " +
                         number(kMaxAltitudeM) + "] m)");
-        const bool off_map = map.width > 0 && map.height > 0 &&
+        const bool has_truth = std::isfinite(r.map_x) && std::isfinite(r.map_y);  // empty MapX/MapY: a flight without truth
+        const bool off_map = has_truth && map.width > 0 && map.height > 0 &&
                              !(r.map_x >= 0 && r.map_x < map.width && r.map_y >= 0 && r.map_y < map.height);
         if (off_map)
             throw Error(at + "the true position MapX,MapY " + number(r.map_x) + "," + number(r.map_y) + " is outside the " +
@@ -58,7 +59,7 @@ void AirFlightSource::check_rows(MapExtent map) {
         // Odometry placed on the map from the start (as the localizer does): drifting off it is
         // worth knowing, but the filter copes (particles off the map are flagged, not used).
         const double ox = start_x + (r.svo_m.x - svo_e0) / mpp_, oy = start_y - (r.svo_m.y - svo_n0) / mpp_;
-        if (map.width > 0 && map.height > 0 && !(ox >= 0 && ox < map.width && oy >= 0 && oy < map.height))
+        if (has_truth && std::isfinite(start_x) && map.width > 0 && map.height > 0 && !(ox >= 0 && ox < map.width && oy >= 0 && oy < map.height))
             if (odometry_off++ == 0) first_odometry_off = place(rows, r.filename);
         if (count++ % stride_ == 0) {
             ++used;

@@ -65,7 +65,7 @@ LocalizationSummary summarise(const std::vector<LocalizationRow>& rows, const Fi
 }
 
 LocalizationResult run_localization(FlightSource& source, ParticleFilter& filter, const ProgressFn& progress, double start_x,
-                                    double start_y) {
+                                    double start_y, double start_heading_rad) {
     LocalizationResult result;
     const double mpp = filter.config().metres_per_pixel;
     FlightSample s;
@@ -77,10 +77,10 @@ LocalizationResult run_localization(FlightSource& source, ParticleFilter& filter
         const auto t0 = std::chrono::steady_clock::now();
         if (!started) {
             if (std::isnan(start_x) || std::isnan(start_y)) {
-                if (!s.has_truth) throw Error("localize: the first frame has no ground truth; give the start position");
+                if (!s.has_truth) throw Error("localize: the flight has no ground truth (MapX/MapY) in its first frame; give the start position (--start X,Y or --start-latlon LAT,LON)");
                 start_x = s.truth_x, start_y = s.truth_y;
             }
-            filter.initialise(start_x, start_y, s.heading_rad);
+            filter.initialise(start_x, start_y, std::isnan(start_heading_rad) ? s.heading_rad : start_heading_rad);
             prev_tx = s.truth_x, prev_ty = s.truth_y;
             started = true;
         }

@@ -50,6 +50,8 @@ void FilterConfig::validate() const {
     positive(kld_bin_m, "kld_bin_m");
     positive(init_radius_m, "init_radius_m");
     positive(reinit_radius_m, "reinit_radius_m");
+    if (!std::isnan(init_heading_sd_deg) && !(init_heading_sd_deg >= 0 && init_heading_sd_deg <= 360))
+        throw Error("filter config: init_heading_sd_deg must be in [0, 360] (or NaN: the motion model's eps_rot_deg)");
     motion.validate();
     lock.validate();
     if (!(kld_upper_quantile > 0 && kld_upper_quantile < 1)) throw Error("filter config: kld_upper_quantile must be in (0, 1)");
@@ -79,7 +81,8 @@ double ParticleFilter::normal() {
 }
 
 void ParticleFilter::scatter(double x, double y, double heading, bool have_heading, double radius_m, std::size_t count,
-                             std::size_t first) {
+                             std::size_t first, double heading_sd_deg) {
+    if (std::isnan(heading_sd_deg)) heading_sd_deg = config_.motion.eps_rot_deg;
     const double r_px = radius_m / config_.metres_per_pixel;
     particles_.resize(first + count);
     for (std::size_t i = first; i < particles_.size(); ++i) {
@@ -87,7 +90,7 @@ void ParticleFilter::scatter(double x, double y, double heading, bool have_headi
         const double r = r_px * std::sqrt(uniform()), a = 2 * kPi * uniform();  // uniform over the disc
         p.x = x + r * std::cos(a);
         p.y = y + r * std::sin(a);
-        p.yaw = have_heading ? wrap(heading + config_.motion.eps_rot_deg * kDeg * normal()) : wrap(2 * kPi * uniform());
+        p.yaw = have_heading ? wrap(heading + heading_sd_deg * kDeg * normal()) : wrap(2 * kPi * uniform());
         p.weight = 1;
     }
 }
@@ -95,7 +98,7 @@ void ParticleFilter::scatter(double x, double y, double heading, bool have_headi
 void ParticleFilter::initialise(double x, double y, double heading_rad) {
     if (!std::isfinite(x) || !std::isfinite(y)) throw Error("ParticleFilter::initialise: position must be finite");
     const std::size_t n = config_.sampling == SamplingMethod::Kld ? config_.max_particles : config_.fixed_particles;
-    scatter(x, y, heading_rad, std::isfinite(heading_rad), config_.init_radius_m, n);
+    scatter(x, y, heading_rad, std::isfinite(heading_rad), config_.init_radius_m, n, 0, config_.init_heading_sd_deg);
     last_east_ = last_north_ = 0;
     last_heading_ = heading_rad;
     lock_.reset(x, y, config_.init_radius_m);

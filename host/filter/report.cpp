@@ -9,11 +9,24 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "trn/build_info.hpp"
 #include "trn/error.hpp"
 #include "trn/io/atomic_file.hpp"
 #include "trn/io/gnuplot.hpp"
 
 namespace trn::filter {
+namespace {
+// A CSV cell: unknown (no ground truth) is an empty cell, never "nan".
+struct Cell {
+    double v;
+};
+std::ostream& operator<<(std::ostream& os, Cell c) {
+    if (std::isfinite(c.v)) os << c.v;
+    return os;
+}
+bool has_errors(const LocalizationSummary& s) { return std::isfinite(s.filter_mean_error_m); }
+}  // namespace
+
 void write_rows_csv(const std::string& path, const std::vector<LocalizationRow>& rows) {
     io::AtomicFile file(path);
     std::ostream& out = file.stream();
@@ -21,9 +34,9 @@ void write_rows_csv(const std::string& path, const std::vector<LocalizationRow>&
     out << "frame,time_s,distance_m,truth_x,truth_y,odometry_x,odometry_y,estimate_x,estimate_y,estimate_yaw,best_x,best_y,"
            "error_m,odometry_error_m,particles,off_map,score_ms,step_ms,odometry_lost,frame_missing,reinitialised\n";
     for (const LocalizationRow& r : rows)
-        out << r.frame << ',' << r.time_s << ',' << r.distance_m << ',' << r.truth_x << ',' << r.truth_y << ',' << r.odometry_x << ','
+        out << r.frame << ',' << r.time_s << ',' << r.distance_m << ',' << Cell{r.truth_x} << ',' << Cell{r.truth_y} << ',' << r.odometry_x << ','
             << r.odometry_y << ',' << r.estimate_x << ',' << r.estimate_y << ',' << r.estimate_yaw << ',' << r.best_x << ',' << r.best_y
-            << ',' << r.error_m << ',' << r.odometry_error_m << ',' << r.particles << ',' << r.off_map << ',' << r.score_ms << ','
+            << ',' << Cell{r.error_m} << ',' << Cell{r.odometry_error_m} << ',' << r.particles << ',' << r.off_map << ',' << r.score_ms << ','
             << r.step_ms << ',' << r.odometry_lost << ',' << r.frame_missing << ',' << r.reinitialised << '\n';
     file.commit();
 }
@@ -32,12 +45,17 @@ void write_summary_json(const std::string& path, const LocalizationSummary& s, c
                         const std::map<std::string, double>& numbers) {
     nlohmann::ordered_json j;
     auto num = [](double v) { return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr); };
-    j["filter_mean_error_m"] = num(s.filter_mean_error_m);
-    j["odometry_mean_error_m"] = num(s.odometry_mean_error_m);
-    j["filter_final_error_m"] = num(s.filter_final_error_m);
-    j["odometry_final_error_m"] = num(s.odometry_final_error_m);
-    j["filter_error_slope_m_per_km"] = num(s.filter_error_slope_m_per_km);
-    j["odometry_error_slope_m_per_km"] = num(s.odometry_error_slope_m_per_km);
+    j["ground_truth"] = has_errors(s);
+    if (has_errors(s)) {
+        j["filter_mean_error_m"] = num(s.filter_mean_error_m);
+        j["odometry_mean_error_m"] = num(s.odometry_mean_error_m);
+        j["filter_final_error_m"] = num(s.filter_final_error_m);
+        j["odometry_final_error_m"] = num(s.odometry_final_error_m);
+        j["filter_error_slope_m_per_km"] = num(s.filter_error_slope_m_per_km);
+        j["odometry_error_slope_m_per_km"] = num(s.odometry_error_slope_m_per_km);
+    } else {
+        j["errors"] = "no ground truth: the flight has no MapX/MapY, so no error is computed";
+    }
     j["mean_particles"] = num(s.mean_particles);
     j["frames_per_second"] = num(s.frames_per_second);
     j["mean_score_ms"] = num(s.mean_score_ms);
@@ -47,6 +65,8 @@ void write_summary_json(const std::string& path, const LocalizationSummary& s, c
     j["frames_missing"] = s.counters.frames_missing;
     j["particles_off_map"] = s.counters.particles_off_map;
     j["reinitialisations"] = s.counters.reinitialisations;
+    j["trnkit_version"] = std::string(build_info().version);  // provenance: what produced these numbers
+    j["git_commit"] = std::string(build_info().git_commit);
     for (const auto& [k, v] : strings) j[k] = v;
     for (const auto& [k, v] : numbers) j[k] = num(v);
     io::write_file_atomic(path, j.dump(2) + '\n');
@@ -54,6 +74,16 @@ void write_summary_json(const std::string& path, const LocalizationSummary& s, c
 
 std::string format_summary(const LocalizationSummary& s) {
     char buf[1024];
+    if (!has_errors(s)) {
+        std::snprintf(buf, sizeof buf,
+                      "steps %zu\n"
+                      "no ground truth: errors not computed\n"
+                      "particles:    mean %.1f   filter speed %.1f frames/s (mean scoring %.2f ms)\n"
+                      "handled:      %zu odometry lost, %zu frames missing, %zu off-map particle scores, %zu re-initialisations\n",
+                      s.steps, s.mean_particles, s.frames_per_second, s.mean_score_ms, s.counters.odometry_lost, s.counters.frames_missing,
+                      s.counters.particles_off_map, s.counters.reinitialisations);
+        return buf;
+    }
     std::snprintf(buf, sizeof buf,
                   "steps %zu over %.2f km\n"
                   "mean error:   filter %8.2f m   odometry %8.2f m   (ratio %.3f)\n"

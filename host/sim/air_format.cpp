@@ -317,8 +317,16 @@ bool AirMetadataParser::next(AirRecord& r) {
         r = AirRecord{};
         r.filename = fields[column_of_[0]];
         if (r.filename.empty()) throw Error(at + "Filename is empty");
+        // MapX/MapY are the ground truth: a real flight may have none, then both cells are empty
+        // (NaN here); one without the other is a broken row.
+        constexpr std::size_t map_x_col = 15, map_y_col = 16;  // kColumns order
+        const bool no_truth = fields[column_of_[map_x_col]].empty() && fields[column_of_[map_y_col]].empty();
         for (std::size_t c = 1; c < kColumns.size(); ++c) {
             const std::string& f = fields[column_of_[c]];
+            if (no_truth && (c == map_x_col || c == map_y_col)) {
+                *numeric_field(r, c) = NAN;
+                continue;
+            }
             double v = 0;
             const auto [ptr, ec] = std::from_chars(f.data(), f.data() + f.size(), v);
             if (f.empty() || ec != std::errc() || ptr != f.data() + f.size())

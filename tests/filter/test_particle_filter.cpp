@@ -204,6 +204,43 @@ TEST(ParticleFilter, ParticlesLeavingTheMapAreCountedNotFatal) {
     EXPECT_EQ(pf.counters().particles_off_map, rep.off_map);
 }
 
+TEST(ParticleFilter, InitialParticlesLieWithinTheInitRadiusAroundTheHeadingPrior) {
+    Rig rig;
+    for (const double radius_m : {5.0, 50.0}) {
+        FilterConfig cfg = small_config();
+        cfg.init_radius_m = radius_m;
+        cfg.init_heading_sd_deg = 2;
+        ParticleFilter pf(rig.scorer, cfg);
+        pf.initialise(300, 250, kHalfPi);
+        const double r_px = radius_m / cfg.metres_per_pixel;
+        double farthest = 0, mean_cos = 0;
+        for (const Particle& p : pf.particles()) {
+            farthest = std::max(farthest, std::hypot(p.x - 300, p.y - 250));
+            mean_cos += std::cos(p.yaw - kHalfPi);
+        }
+        mean_cos /= pf.particles().size();
+        EXPECT_LE(farthest, r_px) << radius_m;
+        EXPECT_GT(farthest, 0.9 * r_px) << radius_m << ": the disc should be filled, not a point";
+        EXPECT_GT(mean_cos, std::cos(3 * 3.14159265358979 / 180)) << "headings should stay within a few sd of the prior";
+    }
+    FilterConfig bad = small_config();
+    bad.init_heading_sd_deg = -1;
+    EXPECT_THROW(ParticleFilter(rig.scorer, bad), Error);
+}
+
+TEST(ParticleFilter, RunLocalizationStartsAtTheGivenPositionAndHeading) {
+    Rig rig;
+    FilterConfig cfg = small_config();
+    cfg.init_radius_m = 10;
+    cfg.init_heading_sd_deg = 1;
+    ParticleFilter pf(rig.scorer, cfg);
+    SimulatedFlightSource src(test_world().world, short_flight(0.2), 10);
+    const LocalizationResult r = run_localization(src, pf, {}, 260, 240, 1.0);
+    ASSERT_FALSE(r.rows.empty());
+    EXPECT_NEAR(r.rows.front().odometry_x, 260, 1e-9);  // odometry is placed at the given start
+    EXPECT_NEAR(r.rows.front().odometry_y, 240, 1e-9);
+}
+
 TEST(ParticleFilter, RejectsBadConfigurationAndUseBeforeInitialise) {
     Rig rig;
     FilterConfig bad = small_config();

@@ -50,9 +50,10 @@ struct LocalizationResult {
 using ProgressFn = std::function<void(std::size_t, std::size_t)>;
 
 // Initialises the filter at the first sample's ground truth ("the last known position"; a source
-// without truth must be given `start_x`, `start_y`), then steps it once per sample.
+// without truth must be given `start_x`, `start_y`), then steps it once per sample. The initial
+// headings centre on `start_heading_rad` (radians; NaN: the first magnetometer reading).
 LocalizationResult run_localization(FlightSource& source, ParticleFilter& filter, const ProgressFn& progress = {},
-                                    double start_x = NAN, double start_y = NAN);
+                                    double start_x = NAN, double start_y = NAN, double start_heading_rad = NAN);
 
 // Least-squares line of y over x (NaN with fewer than two distinct x).
 struct FittedLine {

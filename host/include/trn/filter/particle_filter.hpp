@@ -59,9 +59,13 @@ struct FilterConfig {
     std::size_t min_particles = 100;
     std::size_t max_particles = 2000;  // also the size of the initial set
     std::size_t fixed_particles = 1000;  // importance / rejection sampling
-    // Initialisation: uniform within this radius of the last known position.
+    // Initialisation: uniform within this radius of the last known position. The library default
+    // is the dissertation's 300 m; `trnkit localize` passes 50 m (a GNSS-loss handover: the last
+    // fix is metres, not hundreds of metres, off).
     double init_radius_m = 300;
-    double reinit_radius_m = 300;
+    double reinit_radius_m = 300;  // collapse re-initialisation radius around the last estimate
+    // Spread of the initial headings around the given one (degrees); NaN: motion.eps_rot_deg.
+    double init_heading_sd_deg = NAN;
     MotionModel motion;   // eqs. 2.7-2.11 and their noise terms
     LockMonitorConfig lock;  // wrong-lock detection and wider search
     std::uint64_t seed = 1;
@@ -125,7 +129,7 @@ private:
     std::size_t sample_and_propagate(const StepMotion& m);  // returns occupied bins
     std::size_t draw_index(double total_weight);
     void scatter(double x, double y, double heading, bool have_heading, double radius_m, std::size_t count,
-                 std::size_t first = 0);
+                 std::size_t first = 0, double heading_sd_deg = NAN);
     std::size_t measure(const FilterInput& input, double& score_ms);  // returns invalid count
     void update_estimate();
     void check_lock(const StepMotion& m, StepReport& report);
