@@ -140,6 +140,13 @@ void localize(const LocalizeArgs& a) {
     const std::size_t rows = filter::count_air_rows(a.dataset);
     filter::AirFlightSource source(a.dataset, info.camera, mpp, info.fps, stride, (rows + stride - 1) / stride,
                                    {map.image.width, map.image.height});
+    if (std::isnan(start_x)) {  // the start defaults to the first row's truth: refuse before the run when it has none
+        sim::AirReader first(a.dataset);
+        sim::AirRecord r;
+        if (first.next(r) && !std::isfinite(r.map_x))
+            throw Error("--start: required: " + a.dataset + "/metadata.csv has no ground truth (empty MapX,MapY) in its first row; "
+                        "give --start X,Y or --start-latlon LAT,LON");
+    }
     for (const std::string& w : source.warnings()) std::cerr << "trnkit: warning: " << w << "\n";
     std::cerr << "localizing " << a.dataset << " (" << rows << " frames, every " << stride << ") on " << backend->info().name << ", "
               << cfg.conversion.to_string() << ", " << filter::to_string(cfg.sampling) << " sampling, seed " << a.seed << "\n";
@@ -174,7 +181,7 @@ void localize(const LocalizeArgs& a) {
     std::cout << "per-step CSV: " << out << "/localization.csv\nsummary JSON: " << out << "/summary.json\n";
     if (!a.no_plots) {
         const filter::PlotFiles plots = filter::plot_run(out, result.rows, result.summary, map.image.view(), mpp, info.scenario);
-        std::cout << "plots: " << plots.trajectory_png << " " << plots.error_png << "\n";
+        std::cout << "plots: " << plots.trajectory_png << (plots.error_png.empty() ? "" : " " + plots.error_png) << "\n";
     }
 }
 

@@ -60,7 +60,7 @@ void write_summary_json(const std::string& path, const LocalizationSummary& s, c
     j["frames_per_second"] = num(s.frames_per_second);
     j["mean_score_ms"] = num(s.mean_score_ms);
     j["steps"] = s.steps;
-    j["distance_m"] = num(s.distance_m);
+    if (has_errors(s)) j["distance_m"] = num(s.distance_m);  // flown along the ground truth: unknown without it
     j["odometry_lost"] = s.counters.odometry_lost;
     j["frames_missing"] = s.counters.frames_missing;
     j["particles_off_map"] = s.counters.particles_off_map;
@@ -131,6 +131,7 @@ PlotFiles plot_run(const std::string& folder, const std::vector<LocalizationRow>
 
     std::ostringstream gp;
     const double px_m = factor * mpp;
+    const bool truth = has_errors(s);
     // Trajectories: zoom on the flown area plus a margin.
     double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
     for (const LocalizationRow& r : rows)
@@ -145,9 +146,13 @@ PlotFiles plot_run(const std::string& folder, const std::vector<LocalizationRow>
        << "set yrange [" << y1 + margin << ":" << y0 - margin << "]\n"
        << "plot " << gnuplot_string(raw) << " binary array=(" << w << "," << h << ") format='%uchar' dx=" << px_m << " dy=" << px_m
        << " origin=(0,0) flipy with image notitle, \\\n"
-       << "  " << gnuplot_string(data) << " using 2:3 with lines lw 3 lc rgb '#1a9850' title 'ground truth', \\\n"
-       << "  '' using 4:5 with lines lw 2 lc rgb '#d73027' title 'visual odometry', \\\n"
+       << "  " << gnuplot_string(data) << (truth ? " using 2:3 with lines lw 3 lc rgb '#1a9850' title 'ground truth', \\\n  ''" : "")
+       << " using 4:5 with lines lw 2 lc rgb '#d73027' title 'visual odometry', \\\n"
        << "  '' using 6:7 with lines lw 2 lc rgb '#4575b4' title 'DPC-PFL estimate'\n";
+    if (!truth) {  // no ground truth, no errors: the trajectories only
+        io::run_gnuplot({folder, "plot.gp", gp.str(), {{raw, small}, {data, table.str()}}, "gnuplot.log", {trajectory}});
+        return {trajectory.path, ""};
+    }
     gp << io::gnuplot_png_terminal(1100, 600, "sans,11") << "set output " << gnuplot_string(error.name) << "\n"
        << "reset\nset title " << gnuplot_string(title + ": position error over distance flown") << "\n"
        << "set xlabel 'distance flown (km)'\nset ylabel 'error (m)'\nset grid\nset key left top\n"

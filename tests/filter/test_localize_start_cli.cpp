@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 
@@ -16,6 +17,7 @@
 #include "../cli/cli_process.hpp"
 #include "../common/test_images.hpp"
 #include "trn/build_info.hpp"
+#include "trn/sim/map.hpp"
 
 namespace {
 
@@ -91,8 +93,7 @@ TEST_F(LocalizeStartCli, FlightWithoutGroundTruthNeedsStartAndSaysNoGroundTruth)
     const std::string f = flight("nt", ",");
     const auto refused = run_trnkit(localize(f));
     EXPECT_NE(refused.code, 0) << refused.output;
-    EXPECT_NE(refused.output.find("no ground truth"), std::string::npos) << refused.output;
-    EXPECT_NE(refused.output.find("--start"), std::string::npos) << refused.output;
+    EXPECT_NE(refused.output.find("--start: required: " + f + "/metadata.csv has no ground truth"), std::string::npos) << refused.output;
 
     const auto r = run_trnkit(localize(f) + " --start 120,100 --force");
     ASSERT_EQ(r.code, 0) << r.output;
@@ -101,6 +102,7 @@ TEST_F(LocalizeStartCli, FlightWithoutGroundTruthNeedsStartAndSaysNoGroundTruth)
     const nlohmann::json j = summary(f);
     EXPECT_EQ(j["ground_truth"], false);
     EXPECT_FALSE(j.contains("filter_mean_error_m"));
+    EXPECT_FALSE(j.contains("distance_m"));
     EXPECT_EQ(j["steps"], 4);
     const std::string csv = read(f + "/out/localization.csv");
     EXPECT_EQ(csv.find("nan"), std::string::npos) << csv;
@@ -113,6 +115,22 @@ TEST_F(LocalizeStartCli, HalfAGroundTruthIsABrokenRow) {
     const auto r = run_trnkit(localize(f) + " --start 120,100");
     EXPECT_NE(r.code, 0) << r.output;
     EXPECT_NE(r.output.find("metadata.csv:2: MapY '' is not a number"), std::string::npos) << r.output;
+}
+
+TEST_F(LocalizeStartCli, StartLatLonIsPlacedThroughTheGeoOrigin) {
+    const trn::sim::GeoOrigin origin{47.1, 8.2};
+    const std::string f = flight("ll", ",", R"("origin": {"latitude_deg": 47.1, "longitude_deg": 8.2}, )");
+    trn::sim::Map m;
+    m.metres_per_pixel = 1;
+    m.origin = origin;
+    const trn::sim::LatLon ll = trn::sim::map_pixel_to_latlon(m, 130, 90);
+    char arg[96];
+    std::snprintf(arg, sizeof arg, " --start-latlon %.10f,%.10f", ll.latitude_deg, ll.longitude_deg);
+    const auto r = run_trnkit(localize(f) + arg);
+    ASSERT_EQ(r.code, 0) << r.output;
+    const nlohmann::json j = summary(f);
+    EXPECT_NEAR(j["start_x"].get<double>(), 130, 0.01);
+    EXPECT_NEAR(j["start_y"].get<double>(), 90, 0.01);
 }
 
 TEST_F(LocalizeStartCli, SummaryRecordsProvenanceSeedAndOptions) {

@@ -21,7 +21,7 @@ void write_summary_json(const std::string& path, const LocalizationSummary& summ
 std::string format_summary(const LocalizationSummary& summary);
 
 struct PlotFiles {
-    std::string trajectory_png, error_png;
+    std::string trajectory_png, error_png;  // error_png "" when the flight has no ground truth
 };
 
 // Draws both plots into `folder` with gnuplot (run as a subprocess). The map is drawn under the
