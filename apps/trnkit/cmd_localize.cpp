@@ -193,7 +193,7 @@ void add_localize_command(CLI::App& app) {
     cmd->add_option("--dataset", a->dataset, "AIR flight folder (metadata.csv, frames, flight.json)")->required();
     cmd->add_option("--map", a->map, "Localization map image (default: the one flight.json names)");
     cmd->add_option("--mpp", a->mpp, "Map resolution, metres per pixel (default: flight.json)")->check(real_in(0, 1000, Open::low));
-    cmd->add_option("--backend", a->backend, "Scoring backend (cpu, opencl:0, vulkan, ... or 'fastest')")->capture_default_str();
+    cmd->add_option("--backend", a->backend, "Scoring backend (cpu, opencl:0, vulkan, ... or 'fastest': the first usable of GPU OpenCL, GPU Vulkan, cpu, other devices, always the same on one machine)")->capture_default_str();
     cmd->add_option("--conversion", a->conversion, "linear, softmax, rectifying:D or logistic:V")->capture_default_str();
     cmd->add_option("--sampling", a->sampling, "kld, importance or rejection")->capture_default_str();
     cmd->add_option("--seed", a->seed, "Random seed (a fixed seed reproduces a run exactly)")->capture_default_str()->transform(any_seed());
