@@ -5,15 +5,38 @@
 #include <cstdio>
 #include <cstring>
 #include <iostream>
+#include <string>
+#include <string_view>
 
 #include "commands.hpp"
 #include "trn/error.hpp"
 
 namespace {
 
+// An error is one line whatever it quotes: a newline or other control character inside a file name
+// or an option value is shown escaped (\n, \x1b), so scripts reading stderr line by line see it whole.
+std::string one_line(std::string_view text) {
+    std::string out;
+    for (const unsigned char c : text) {
+        if (c == '\n') out += "\\n";
+        else if (c == '\r') out += "\\r";
+        else if (c == '\t') out += "\\t";
+        else if (c < 0x20 || c == 0x7f) {
+            static const char hex[] = "0123456789abcdef";
+            out += "\\x";
+            out += hex[c >> 4];
+            out += hex[c & 15];
+        } else out += char(c);
+    }
+    return out;
+}
+
 int run(int argc, char** argv) {
     CLI::App app{"trnkit: terrain-relative navigation kit (particle-filter map matching, Sobel, energy)"};
     app.require_subcommand(1);
+    app.failure_message([](const CLI::App*, const CLI::Error& e) {
+        return "trnkit: error: " + one_line(e.what()) + " (see --help)\n";
+    });
     trn::cli::add_devices_command(app);
     trn::cli::add_sobel_command(app);
     trn::cli::add_score_command(app);
@@ -30,10 +53,10 @@ int run(int argc, char** argv) {
     } catch (const CLI::ParseError& e) {
         return app.exit(e);
     } catch (const trn::Error& e) {
-        std::cerr << "trnkit: error: " << e.what() << "\n";
+        std::cerr << "trnkit: error: " << one_line(e.what()) << "\n";
         return 1;
     } catch (const std::exception& e) {
-        std::cerr << "trnkit: unexpected error: " << e.what() << "\n";
+        std::cerr << "trnkit: unexpected error: " << one_line(e.what()) << "\n";
         return 2;
     }
     return 0;

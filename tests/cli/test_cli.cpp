@@ -88,6 +88,26 @@ TEST_F(Cli, BadInputGivesOneClearLineAndNonZeroExit) {
     }
 }
 
+// One error, one line: a newline inside a file name or an option value is shown escaped, and
+// CLI11's parse errors carry no second "Run with --help" line (FUZZ-FINDINGS #4, #16).
+TEST_F(Cli, ErrorsStayOnOneLineWhateverTheyQuote) {
+    const struct {
+        std::string args, expect;
+    } cases[] = {
+        {"sobel '" + path("no\nthere.png") + "'", "no\\nthere.png: no such file"},
+        {"energy inspect '--opt=line1\nline2\n' " + path("poses.csv"), "line1\\nline2\\n"},
+        {"score --map " + path("map.png"), "--template is required"},
+        {"sobel --bogus-option " + path("map.png"), "--bogus-option"},
+    };
+    for (const auto& c : cases) {
+        const Result r = run(c.args);
+        EXPECT_NE(r.code, 0) << c.args;
+        EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << c.args << "\n" << r.output;
+        EXPECT_EQ(r.output.rfind("trnkit: error: ", 0), 0u) << r.output;
+        EXPECT_NE(r.output.find(c.expect), std::string::npos) << c.args << "\n" << r.output;
+    }
+}
+
 TEST_F(Cli, HelpWorksEverywhere) {
     for (const char* sub : {"", "devices", "sobel", "score"}) {
         const Result r = run(std::string(sub) + " --help");
