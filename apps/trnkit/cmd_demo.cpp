@@ -43,7 +43,6 @@ void progress_bar(std::size_t done, std::size_t total) { draw_progress(done, tot
 void demo(const DemoArgs& a) {
     namespace fs = std::filesystem;
     const auto t0 = std::chrono::steady_clock::now();
-    check_filter_model_options(a.model);
     const sim::Scenario& preset = sim::find_scenario(a.scenario);
     if (!(a.distance_km > 0)) throw Error("--distance-km must be > 0");
     const std::string out = a.out.empty() ? (fs::temp_directory_path() / "trnkit-demo").string() : a.out;

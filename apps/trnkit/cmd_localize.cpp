@@ -84,7 +84,6 @@ void progress_bar(std::size_t done, std::size_t total) { draw_progress(done, tot
 
 void localize(const LocalizeArgs& a) {
     namespace fs = std::filesystem;
-    check_filter_model_options(a.model);
     if (!fs::is_directory(a.dataset)) throw Error("--dataset " + a.dataset + ": not a folder");
     if (a.min_particles > a.max_particles)
         throw Error("--min-particles " + std::to_string(a.min_particles) + " exceeds --max-particles " + std::to_string(a.max_particles));

@@ -1,7 +1,7 @@
 #pragma once
 // The particle filter's motion-model and lock-monitor options, shared by `localize` and `demo`:
-// registered on a subcommand, then checked (finite, in range, the message names the option) and
-// copied into a FilterConfig.
+// registered on a subcommand with their ranges (checked by CLI11 at parse time through real_in, so a
+// bad value fails before any work with one line naming the option) and copied into a FilterConfig.
 #include <CLI/CLI.hpp>
 
 #include "trn/filter/particle_filter.hpp"
@@ -15,9 +15,7 @@ struct FilterModelArgs {
 };
 
 void add_filter_model_options(CLI::App& cmd, FilterModelArgs& args);
-// Throws trn::Error "--option VALUE: ..." for a value out of range (call before any work).
-void check_filter_model_options(const FilterModelArgs& args);
-// Checks, then copies the options into `config`.
+// Copies the (already range-checked) options into `config`.
 void apply_filter_model_options(const FilterModelArgs& args, filter::FilterConfig& config);
 
 }  // namespace trn::cli
