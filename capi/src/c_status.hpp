@@ -1,0 +1,36 @@
+#pragma once
+// The boundary of the C API: every entry point runs its body through guarded(), which turns each
+// C++ exception into a trn_status and this thread's trn_last_error() message, so none crosses into C.
+#include <stdexcept>
+#include <string>
+
+#include "trn/trnkit.h"
+
+namespace trn::capi {
+
+// A C-level argument the caller got wrong (null pointer, negative size): TRN_ERR_INVALID_ARGUMENT.
+class InvalidArgument : public std::invalid_argument {
+public:
+    using std::invalid_argument::invalid_argument;
+};
+
+// Throws InvalidArgument "<what> is NULL" when p is null.
+inline void require_pointer(const void* p, const char* what) {
+    if (p == nullptr) throw InvalidArgument(std::string(what) + " is NULL");
+}
+
+// Records success (clears the message) or the failure of `function` and returns its status.
+trn_status succeed() noexcept;
+trn_status translate_current_exception(const char* function) noexcept;
+
+template <typename Body>
+trn_status guarded(const char* function, Body&& body) noexcept {
+    try {
+        body();
+        return succeed();
+    } catch (...) {
+        return translate_current_exception(function);
+    }
+}
+
+}  // namespace trn::capi
