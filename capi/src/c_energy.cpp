@@ -13,11 +13,12 @@ namespace {
 
 trn::energy::IntegrateRequest to_request(const trn_energy_options& o) {
     trn::energy::IntegrateRequest q;
-    switch (o.align) {
+    const int align = trn::capi::raw_enum(o.align);
+    switch (align) {
         case TRN_ALIGN_SAME_CLOCK: q.align = trn::energy::AlignMode::SameClock; break;
         case TRN_ALIGN_OFFSET: q.align = trn::energy::AlignMode::Offset; break;
         case TRN_ALIGN_AUTO: q.align = trn::energy::AlignMode::Auto; break;
-        default: throw InvalidArgument("options->align " + std::to_string(int(o.align)) + " is not a trn_align_mode");
+        default: throw InvalidArgument("options->align " + std::to_string(align) + " is not a trn_align_mode");
     }
     q.offset_s = o.offset_s;
     q.search_s = o.search_s;

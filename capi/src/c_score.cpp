@@ -15,7 +15,8 @@ namespace {
 trn::ScoreOptions to_cxx(const trn_score_options& o) {
     trn::ScoreOptions options;
     options.min_valid_fraction = o.min_valid_fraction;
-    switch (o.sampling) {
+    const int sampling = trn::capi::raw_enum(o.sampling);
+    switch (sampling) {
         case TRN_SAMPLING_DENSE: break;
         case TRN_SAMPLING_RANDOM: options.sampling = trn::Sampling::random(o.fraction, o.seed); break;
         case TRN_SAMPLING_EXPLICIT: {
@@ -27,7 +28,7 @@ trn::ScoreOptions to_cxx(const trn_score_options& o) {
             options.sampling = trn::Sampling::explicit_points(std::move(points));
             break;
         }
-        default: throw InvalidArgument("options->sampling " + std::to_string(int(o.sampling)) + " is not a trn_sampling_kind");
+        default: throw InvalidArgument("options->sampling " + std::to_string(sampling) + " is not a trn_sampling_kind");
     }
     return options;
 }
@@ -59,12 +60,13 @@ trn_status trn_plan_create(const trn_template* templ, const trn_score_options* o
             throw InvalidArgument("template stride " + std::to_string(templ->stride) + " is smaller than its width " +
                                   std::to_string(templ->width));
         trn::TemplateView view;
-        if (templ->type == TRN_PIXEL_U8)
+        const int type = trn::capi::raw_enum(templ->type);
+        if (type == TRN_PIXEL_U8)
             view = trn::GrayView{static_cast<const std::uint8_t*>(templ->data), templ->width, templ->height, templ->stride};
-        else if (templ->type == TRN_PIXEL_F32)
+        else if (type == TRN_PIXEL_F32)
             view = trn::FloatView{static_cast<const float*>(templ->data), templ->width, templ->height, templ->stride};
         else
-            throw InvalidArgument("templ->type " + std::to_string(int(templ->type)) + " is not a trn_pixel_type");
+            throw InvalidArgument("templ->type " + std::to_string(type) + " is not a trn_pixel_type");
         const trn_score_options defaults = trn_score_options_default();
         auto plan = std::make_unique<trn_plan>();
         plan->plan = trn::make_scoring_plan(view, to_cxx(options ? *options : defaults));

@@ -54,7 +54,7 @@ extern "C" {
 const char* trn_last_error(void) { return trn::capi::last_error.c_str(); }
 
 const char* trn_status_name(trn_status status) {
-    switch (status) {
+    switch (trn::capi::raw_enum(status)) {
         case TRN_OK: return "TRN_OK";
         case TRN_ERR_INVALID_ARGUMENT: return "TRN_ERR_INVALID_ARGUMENT";
         case TRN_ERR_UNAVAILABLE: return "TRN_ERR_UNAVAILABLE";

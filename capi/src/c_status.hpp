@@ -1,6 +1,7 @@
 #pragma once
 // The boundary of the C API: every entry point runs its body through guarded(), which turns each
 // C++ exception into a trn_status and this thread's trn_last_error() message, so none crosses into C.
+#include <cstring>
 #include <stdexcept>
 #include <string>
 
@@ -17,6 +18,16 @@ public:
 // Throws InvalidArgument "<what> is NULL" when p is null.
 inline void require_pointer(const void* p, const char* what) {
     if (p == nullptr) throw InvalidArgument(std::string(what) + " is NULL");
+}
+
+// The value a C caller stored in an enum field. C may store any int there, but in C++ loading a
+// value outside the enumerators' range is undefined, so the bytes are read as an int.
+template <typename Enum>
+int raw_enum(const Enum& e) {
+    static_assert(sizeof(Enum) == sizeof(int), "C enums are int-sized");
+    int v;
+    std::memcpy(&v, &e, sizeof v);
+    return v;
 }
 
 // Records success (clears the message) or the failure of `function` and returns its status.
