@@ -112,3 +112,18 @@ def test_devices_lists_cpu():
     out = subprocess.run([trnkit_exe(), "devices"], capture_output=True, text=True, check=True).stdout
     for n in names:
         assert n in out, f"{n} missing from `trnkit devices`"
+
+
+def test_maps_are_read_in_place_when_rows_are_contiguous():
+    """NumPy reports its allocations to tracemalloc: a copy of a 6 MB map would show."""
+    import tracemalloc
+    b = trnkit.Backend("cpu")
+    big = np.zeros((2000, 4000), np.uint8)
+    peaks = {}
+    for name, a in [("contiguous", big), ("strided", big[:, :3000]), ("column-major", np.asfortranarray(big[:, :3000]))]:
+        tracemalloc.start()
+        b.upload_map(a)
+        peaks[name] = tracemalloc.get_traced_memory()[1]
+        tracemalloc.stop()
+    assert peaks["contiguous"] < 100_000 and peaks["strided"] < 100_000, peaks
+    assert peaks["column-major"] >= 6_000_000, peaks  # the copy is seen, so the check can fail
