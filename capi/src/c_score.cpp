@@ -21,7 +21,7 @@ trn::ScoreOptions to_cxx(const trn_score_options& o) {
         case TRN_SAMPLING_RANDOM: options.sampling = trn::Sampling::random(o.fraction, o.seed); break;
         case TRN_SAMPLING_EXPLICIT: {
             if (o.point_count > 0) require_pointer(o.points, "options->points");
-            trn::limits::check_count("options->point_count", static_cast<std::int64_t>(o.point_count),
+            trn::limits::check_count("options->point_count", trn::capi::as_count(o.point_count),
                                      trn::limits::kMaxTemplatePixels, trn::limits::kTemplateBytesPerPixel);
             std::vector<trn::SamplePoint> points(o.point_count);
             for (std::size_t i = 0; i < o.point_count; ++i) points[i] = {o.points[2 * i], o.points[2 * i + 1]};
@@ -86,7 +86,7 @@ trn_status trn_score_poses(trn_backend* backend, const trn_map* map, const trn_p
         require_pointer(plan, "plan");
         if (count > 0) require_pointer(poses, "poses"), require_pointer(out, "out");
         // Before the copies below, so an absurd count is refused by name rather than by bad_alloc.
-        trn::limits::check_count("count", static_cast<std::int64_t>(count), trn::limits::kMaxParticles, trn::limits::kParticleBytes);
+        trn::limits::check_count("count", trn::capi::as_count(count), trn::limits::kMaxParticles, trn::limits::kParticleBytes);
         std::vector<trn::Pose> cxx_poses(count);
         for (std::size_t i = 0; i < count; ++i) cxx_poses[i] = {poses[i].x, poses[i].y, poses[i].yaw, poses[i].scale};
         std::vector<trn::ParticleScore> scores(count);

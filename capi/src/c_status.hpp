@@ -1,7 +1,9 @@
 #pragma once
 // The boundary of the C API: every entry point runs its body through guarded(), which turns each
 // C++ exception into a trn_status and this thread's trn_last_error() message, so none crosses into C.
+#include <cstdint>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -18,6 +20,12 @@ public:
 // Throws InvalidArgument "<what> is NULL" when p is null.
 inline void require_pointer(const void* p, const char* what) {
     if (p == nullptr) throw InvalidArgument(std::string(what) + " is NULL");
+}
+
+// A C size_t count as the signed count trn::limits checks (saturated, so 2^64-1 stays huge).
+inline std::int64_t as_count(std::size_t n) {
+    return n > static_cast<std::size_t>(std::numeric_limits<std::int64_t>::max()) ? std::numeric_limits<std::int64_t>::max()
+                                                                                  : static_cast<std::int64_t>(n);
 }
 
 // The value a C caller stored in an enum field. C may store any int there, but in C++ loading a

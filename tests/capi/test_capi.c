@@ -375,6 +375,9 @@ static void test_errors(void) {
     CHECK_FAILS(trn_score_poses(cpu, map, plan, poses, 1, NULL, NULL), TRN_ERR_INVALID_ARGUMENT, "out is NULL");
     CHECK_FAILS(trn_score_poses(cpu, ref_map, plan, poses, 1, out, NULL), TRN_ERR_FAILED, "another backend");
     CHECK_FAILS(trn_score_poses(cpu, map, plan, poses, (size_t)1 << 40, out, NULL), TRN_ERR_FAILED, "count 1099511627776");
+    CHECK_FAILS(trn_score_poses(cpu, map, plan, poses, (size_t)-1, out, NULL), TRN_ERR_FAILED, "count 9223372036854775807");
+    o = trn_score_options_default(), o.sampling = TRN_SAMPLING_EXPLICIT, o.points = (const int32_t*)poses, o.point_count = (size_t)-1;
+    CHECK_FAILS(trn_plan_create(&t, &o, &p), TRN_ERR_FAILED, "options->point_count 9223372036854775807");
     bad[0] = poses[0], bad[1] = poses[1], bad[1].scale = 0;
     CHECK_FAILS(trn_score_poses(cpu, map, plan, bad, 2, out, NULL), TRN_ERR_FAILED, "pose 1 has scale 0");
     bad[1].scale = 1, bad[1].x = NAN;
