@@ -15,6 +15,8 @@ packages=(
   libvulkan-dev mesa-vulkan-drivers glslang-tools vulkan-validationlayers vulkan-tools
   # fuzzing (libFuzzer via clang), plots, and the benchmark report script
   clang libclang-rt-14-dev gnuplot-nox python3
+  # the Python module (pybind11 + NumPy) and its pytest tests
+  python3-dev python3-numpy python3-pybind11 pybind11-dev python3-pytest
 )
 
 missing=()
