@@ -75,6 +75,7 @@ int main(int argc, char** argv) {
                                                        (omp_threads ? omp_threads : "(unset)") + ", OMP_WAIT_POLICY=" +
                                                        (omp_wait ? omp_wait : "(unset)"));
         benchmark::AddCustomContext("trn_cold_working_set_MiB", std::to_string(sweep.cold_bytes >> 20));
+        benchmark::AddCustomContext("trn_cold_working_set_basis", sweep.cold_basis);
         benchmark::AddCustomContext("trn_reported_llc_KiB", std::to_string(sysconf(_SC_LEVEL3_CACHE_SIZE) / 1024));
         benchmark::AddCustomContext("trn_opencv", std::string(CV_VERSION) + ", " + opencv_opencl_description());
         register_setup_benchmarks(sweep);  // first, so "first" is the process's first backend creation

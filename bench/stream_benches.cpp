@@ -1,14 +1,20 @@
 // STREAM-like copy and triad (McCalpin's kernels, OpenMP over every core): the memory-bandwidth
 // limit that Sobel's compulsory traffic is measured against. Bytes counted as STREAM does
 // (copy 16 B, triad 24 B per element; write-allocate reads not counted).
-// Names: stream/<copy|triad>/cold (arrays together larger than the cold working set of Sobel).
+// Names: stream/<copy|triad>/cold (the three arrays together as large as the cold working set,
+// >= 4x the reported last-level cache, see sweep.cpp).
 // No "hot" variant: on 2 cores, OpenMP fork/join dominates arrays small enough for L2.
+// One benchmark iteration repeats passes until the last few agree (stream_stats.hpp) and reports
+// their median; counters: passes, pass_cv (variation of the last passes), unstable (1 when they
+// never agreed within the pass budget: the report then marks the limit unreliable).
 #include <benchmark/benchmark.h>
 #include <omp.h>
 
 #include <memory>
+#include <vector>
 
 #include "register.hpp"
+#include "stream_stats.hpp"
 #include "timing.hpp"
 
 namespace trn::bench {
@@ -37,7 +43,7 @@ Arrays& arrays(std::size_t bytes_total) {
     return *arr;
 }
 
-void stream(benchmark::State& state, Kernel kernel, std::size_t bytes_total) {
+void stream(benchmark::State& state, Kernel kernel, std::size_t bytes_total, std::string cold_basis) {
     Arrays& arr = arrays(bytes_total);
     double* a = arr.a.get();
     const double* b = arr.b.get();
@@ -54,24 +60,39 @@ void stream(benchmark::State& state, Kernel kernel, std::size_t bytes_total) {
         }
     };
     if (first_time(kernel == Kernel::Copy ? "stream/copy" : "stream/triad")) run();
+    const double bytes = double(n) * sizeof(double) * (kernel == Kernel::Copy ? 2 : 3);
+    const StabilityRule rule;
+    std::vector<double> rates;  // GB/s of each pass
+    rates.reserve(rule.max_passes);
+    RateStats stats;
     IterationLog log(state);
     for (auto _ : state) {
-        const auto t0 = Clock::now();
-        run();
-        benchmark::ClobberMemory();
-        log.add(seconds_since(t0));
+        rates.clear();
+        while (!enough_passes(rates, rule)) {
+            const auto t0 = Clock::now();
+            run();
+            benchmark::ClobberMemory();
+            rates.push_back(bytes / seconds_since(t0) / 1e9);
+        }
+        stats = summarize_rates(rates, rule);
+        log.add(bytes / (stats.median * 1e9));  // the median pass stands for the iteration
     }
-    const double bytes = double(n) * sizeof(double) * (kernel == Kernel::Copy ? 2 : 3);
     log.finish(bytes, double(n), "Melem/s", 1e6);
-    state.SetLabel(std::to_string(omp_get_max_threads()) + " threads, 3 arrays of " + std::to_string(n * sizeof(double) >> 20) + " MiB");
+    state.counters["passes"] = double(stats.samples);
+    state.counters["pass_cv"] = stats.cv;
+    state.counters["unstable"] = stats.stable ? 0 : 1;
+    state.counters["max_cv"] = rule.max_cv;
+    state.SetLabel(std::to_string(omp_get_max_threads()) + " threads, 3 arrays of " + std::to_string(n * sizeof(double) >> 20) +
+                   " MiB (" + cold_basis + ")");
 }
 
 }  // namespace
 
 void register_stream_benchmarks(const Sweep& sweep) {
     for (auto [kernel, name] : {std::pair{Kernel::Copy, "copy"}, std::pair{Kernel::Triad, "triad"}}) {
-        benchmark::RegisterBenchmark((std::string("stream/") + name + "/cold").c_str(), stream, kernel, sweep.cold_bytes)
-            ->UseManualTime()->Unit(benchmark::kMillisecond);
+        benchmark::RegisterBenchmark((std::string("stream/") + name + "/cold").c_str(), stream, kernel, sweep.cold_bytes,
+                                     sweep.cold_basis)
+            ->UseManualTime()->Iterations(1)->Unit(benchmark::kMillisecond);
     }
 }
 

@@ -6,28 +6,45 @@
 #include <cstdlib>
 #include <string>
 
+#include <unistd.h>
+
 #include "trn/error.hpp"
+#include "trn/limits.hpp"
 
 namespace trn::bench {
 
-std::size_t cold_working_set_bytes() {
+std::size_t cold_working_set_bytes(std::size_t llc, std::size_t physical, std::string& basis) {
+    constexpr std::size_t MiB = std::size_t(1) << 20, kFloor = 256 * MiB;
+    // The reported LLC may be the whole host socket's (508 MiB on the dev VM, whose read bandwidth
+    // is flat beyond 24 MiB); 4x it is beyond any cache the VM can reach either way.
+    std::size_t bytes = std::max(kFloor, 4 * llc);
+    basis = llc ? "4x the reported " + std::to_string(llc / MiB) + " MiB L3" : "no L3 size reported: 256 MiB";
+    if (bytes == kFloor && llc) basis = "256 MiB, more than 4x the reported " + std::to_string(llc / MiB) + " MiB L3";
+    if (physical && bytes > physical / 4) {
+        bytes = std::max(kFloor, physical / 4 / MiB * MiB);
+        basis += ", capped at a quarter of the " + std::to_string(physical / MiB) + " MiB of memory";
+    }
+    return bytes;
+}
+
+std::size_t cold_working_set_bytes(std::string& basis) {
     constexpr std::size_t MiB = std::size_t(1) << 20;
     if (const char* env = std::getenv("TRN_BENCH_COLD_MB"); env && *env) {
         char* end = nullptr;
         const long mb = std::strtol(env, &end, 10);
         if (*end != '\0' || mb < 16 || mb > 65536)
             throw Error(std::string("TRN_BENCH_COLD_MB='") + env + "': expected a whole number of MiB in [16, 65536]");
+        basis = "TRN_BENCH_COLD_MB";
         return std::size_t(mb) * MiB;
     }
-    // Not derived from the reported LLC: VMs often report the whole host socket's L3 (508 MiB on
-    // the dev VM, whose read bandwidth is flat beyond 24 MiB). 256 MiB is 8x a 32 MiB CCD L3.
-    return 256 * MiB;
+    const long llc = sysconf(_SC_LEVEL3_CACHE_SIZE);
+    return cold_working_set_bytes(llc > 0 ? std::size_t(llc) : 0, std::size_t(limits::physical_memory_bytes()), basis);
 }
 
 Sweep make_sweep(bool full) {
     Sweep s;
     s.full = full;
-    s.cold_bytes = cold_working_set_bytes();
+    s.cold_bytes = cold_working_set_bytes(s.cold_basis);
     if (full) {
         s.sobel_sizes = {{640, 480}, {1280, 720}, {1920, 1080}};
         s.sobel_cold_sizes = s.sobel_sizes;

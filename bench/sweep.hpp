@@ -24,11 +24,16 @@ struct Sweep {
     int ncc_reference_count = 100;             // cpu-ref and the per-particle peers run this many
                                                // (their per-particle rate does not depend on it)
     std::size_t cold_bytes = 0;                // rotating working set for "cold" cases
+    std::string cold_basis;                    // why that size, e.g. "4x the reported 508 MiB L3"
 };
 
 Sweep make_sweep(bool full);
 
-// The size of the rotating working set: $TRN_BENCH_COLD_MB if set, else 256 MiB (see sweep.cpp).
-std::size_t cold_working_set_bytes();
+// The size of the rotating working set: $TRN_BENCH_COLD_MB if set, else 4x the reported
+// last-level cache, at least 256 MiB and at most a quarter of physical memory; `basis` says which.
+std::size_t cold_working_set_bytes(std::string& basis);
+
+// The rule without the environment: `llc` and `physical` in bytes (0: not reported).
+std::size_t cold_working_set_bytes(std::size_t llc, std::size_t physical, std::string& basis);
 
 }  // namespace trn::bench

@@ -1,5 +1,5 @@
-// The OpenCL backend: NCC scoring with one work-group per particle and 3x3 Sobel through local
-// memory (kernels/opencl/*.cl). Buffers live across calls and only grow; phase times come from
+// The OpenCL backend: NCC scoring with one work-group per particle and 3x3 Sobel over 16-pixel
+// strips (kernels/opencl/*.cl). Buffers live across calls and only grow; phase times come from
 // OpenCL profiling events.
 #include "opencl_backend.hpp"
 
@@ -11,6 +11,7 @@
 #include <optional>
 #include <vector>
 
+#include "../common/sobel_work_shape.hpp"
 #include "device_buffer.hpp"
 #include "embedded_kernels.hpp"
 #include "program_cache.hpp"
@@ -23,7 +24,7 @@ namespace {
 // core and a single work item walks the template in memory order with no reduction to pay for.
 constexpr std::size_t kGpuWorkGroup = 256;
 constexpr std::size_t kCpuWorkGroup = 1;
-constexpr std::size_t kSobelTile = 16;
+constexpr std::size_t kSobelPad = 16;  // TRN_SOBEL_PAD in sobel3x3.cl: bytes left of each source row
 constexpr int kSumsPerParticle = 8;    // n, sj, sjj, sjt, st, stt, shift, (pad): see ncc_score.cl
 constexpr int kAffinePerParticle = 8;  // a, b, c, d, tx, ty, (pad, pad)
 
@@ -99,6 +100,19 @@ void require_work_group(cl_kernel k, const char* name, std::size_t needed) {
                     "; set TRN_OPENCL_WORK_GROUP to a smaller power of two");
 }
 
+// What the device says about running the Sobel kernel (choose_sobel_work_shape picks the shape per call).
+WorkGroupLimits sobel_work_group_limits(cl_kernel k, cl_device_id device) {
+    WorkGroupLimits limits;
+    check(clGetKernelWorkGroupInfo(k, device, CL_KERNEL_WORK_GROUP_SIZE, sizeof limits.max_group_size, &limits.max_group_size,
+                                   nullptr),
+          "clGetKernelWorkGroupInfo(sobel3x3, CL_KERNEL_WORK_GROUP_SIZE)");
+    check(clGetKernelWorkGroupInfo(k, device, CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE, sizeof limits.lanes, &limits.lanes,
+                                   nullptr),
+          "clGetKernelWorkGroupInfo(sobel3x3, CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE)");
+    limits.compute_units = device_value<cl_uint>(device, CL_DEVICE_MAX_COMPUTE_UNITS);
+    return limits;
+}
+
 class OpenClBackend final : public Backend {
 public:
     OpenClBackend(const DeviceRef& device, int index) : device_(device), info_(describe_device(device, index)) {
@@ -106,7 +120,6 @@ public:
         const auto max_wg = device_value<std::size_t>(device.device, CL_DEVICE_MAX_WORK_GROUP_SIZE);
         wg_size_ = std::min(work_group_override().value_or(info_.type == "gpu" ? kGpuWorkGroup : kCpuWorkGroup),
                             floor_pow2(max_wg));
-        tile_ = std::min(kSobelTile, floor_pow2(static_cast<std::size_t>(std::max(1.0, std::sqrt(double(max_wg))))));
 
         cl_int err = CL_SUCCESS;
         context_.reset(clCreateContext(nullptr, 1, &device_.device, nullptr, nullptr, &err));
@@ -119,7 +132,7 @@ public:
         BuiltProgram ncc_program = build_program(context_.get(), device_, ncc.file, ncc.source, ncc.sha256,
                                                  "-DTRN_WG_SIZE=" + std::to_string(wg_size_), cache);
         BuiltProgram sobel_program = build_program(context_.get(), device_, sobel.file, sobel.source, sobel.sha256,
-                                                   "-DTRN_TILE=" + std::to_string(tile_), cache);
+                                                   "", cache);
         const bool warm = ncc_program.from_cache && sobel_program.from_cache;
         const double build_ms = ncc_program.build_ms + sobel_program.build_ms;
         record_build_time(cache, device_, warm, build_ms);
@@ -128,12 +141,14 @@ public:
         dense_ = make_kernel(ncc_program_.get(), "ncc_score_dense");
         sparse_ = make_kernel(ncc_program_.get(), "ncc_score_sparse");
         sobel_ = make_kernel(sobel_program_.get(), "sobel3x3");
+        sobel_columns_ = make_kernel(sobel_program_.get(), "sobel3x3_columns");
         require_work_group(dense_.get(), "ncc_score_dense", wg_size_);
         require_work_group(sparse_.get(), "ncc_score_sparse", wg_size_);
-        require_work_group(sobel_.get(), "sobel3x3", tile_ * tile_);
+        sobel_limits_ = sobel_work_group_limits(sobel_.get(), device_.device);
 
-        info_.details += "; NCC work-group " + std::to_string(wg_size_) + ", Sobel tile " + std::to_string(tile_) + "x" +
-                         std::to_string(tile_) + "; programs " + (warm ? "loaded from the cache" : "built from source") +
+        info_.details += "; NCC work-group " + std::to_string(wg_size_) + ", Sobel work-groups from " +
+                         std::to_string(sobel_limits_.max_group_size) + " items max, " + std::to_string(sobel_limits_.lanes) +
+                         " lanes, " + std::to_string(sobel_limits_.compute_units) + " compute units; programs " + (warm ? "loaded from the cache" : "built from source") +
                          " in " + std::to_string(static_cast<long>(build_ms + 0.5)) + " ms";
     }
 
@@ -173,11 +188,12 @@ private:
     DeviceRef device_;
     DeviceInfo info_;
     cl_ulong max_alloc_ = 0;
-    std::size_t wg_size_ = 0, tile_ = 0;
+    std::size_t wg_size_ = 0;
+    WorkGroupLimits sobel_limits_;
     ContextHandle context_;
     QueueHandle queue_;
     ProgramHandle ncc_program_, sobel_program_;
-    KernelHandle dense_, sparse_, sobel_;
+    KernelHandle dense_, sparse_, sobel_, sobel_columns_;
 
     DeviceBuffer affines_, sums_, centered_, offsets_;
     DeviceBuffer sobel_src_, sobel_gx_, sobel_gy_;
@@ -297,45 +313,65 @@ void OpenClBackend::do_score(const MapStorage& storage, const ScoringPlan& plan,
 void OpenClBackend::do_sobel(GrayView src, Int16View gx, Int16View gy, PhaseTimes* times) {
     const std::size_t w = std::size_t(src.width), h = std::size_t(src.height);
     const std::string what = size_text(src.width, src.height);
-    sobel_src_.ensure(context_.get(), w * h, CL_MEM_READ_ONLY, max_alloc_, "Sobel source");
-    sobel_gx_.ensure(context_.get(), w * h * sizeof(cl_short), CL_MEM_WRITE_ONLY, max_alloc_, "Sobel gx");
-    sobel_gy_.ensure(context_.get(), w * h * sizeof(cl_short), CL_MEM_WRITE_ONLY, max_alloc_, "Sobel gy");
+    // Source rows: kSobelPad bytes, the image row, its right neighbour, the last strip's read past
+    // it; a multiple of 64 bytes so every strip is an aligned vector. Outputs: whole strips.
+    const std::size_t strips = (w + kSobelStripPixels - 1) / kSobelStripPixels;
+    const std::size_t pitch = (kSobelPad + strips * kSobelStripPixels + 1 + 63) / 64 * 64;
+    const std::size_t out_pitch = strips * kSobelStripPixels;
+    sobel_src_.ensure(context_.get(), pitch * h, CL_MEM_READ_WRITE, max_alloc_, "Sobel source");
+    sobel_gx_.ensure(context_.get(), out_pitch * h * sizeof(cl_short), CL_MEM_WRITE_ONLY, max_alloc_, "Sobel gx");
+    sobel_gy_.ensure(context_.get(), out_pitch * h * sizeof(cl_short), CL_MEM_WRITE_ONLY, max_alloc_, "Sobel gy");
 
     const std::size_t origin[3] = {0, 0, 0};
+    const std::size_t padded_origin[3] = {kSobelPad, 0, 0};
     cl_event e = nullptr;
     const std::size_t src_region[3] = {w, h, 1};
-    check(clEnqueueWriteBufferRect(queue_.get(), sobel_src_.get(), CL_FALSE, origin, origin, src_region, w, 0,
+    check(clEnqueueWriteBufferRect(queue_.get(), sobel_src_.get(), CL_FALSE, padded_origin, origin, src_region, pitch, 0,
                                    std::size_t(src.stride), 0, src.data, 0, nullptr, &e),
           [&] { return "clEnqueueWriteBufferRect(Sobel source " + what + ") on " + info_.name; });
     EventHandle upload(e);
 
     const cl_mem in = sobel_src_.get(), ox = sobel_gx_.get(), oy = sobel_gy_.get();
-    const cl_int width = src.width, height = src.height;
+    const cl_int width = src.width, height = src.height, src_pitch = cl_int(pitch), dst_pitch = cl_int(out_pitch);
+    cl_kernel c = sobel_columns_.get();
+    set_arg(c, 0, in, "sobel3x3_columns");
+    set_arg(c, 1, width, "sobel3x3_columns");
+    set_arg(c, 2, height, "sobel3x3_columns");
+    set_arg(c, 3, src_pitch, "sobel3x3_columns");
+    const std::size_t border_items = 2 * h;
+    check(clEnqueueNDRangeKernel(queue_.get(), c, 1, nullptr, &border_items, nullptr, 0, nullptr, &e),
+          [&] { return "clEnqueueNDRangeKernel(sobel3x3_columns, " + what + ") on " + info_.name; });
+    EventHandle borders(e);
+
+    const SobelWorkShape shape = choose_sobel_work_shape(sobel_limits_, w, h);
     cl_kernel k = sobel_.get();
     set_arg(k, 0, in, "sobel3x3");
     set_arg(k, 1, width, "sobel3x3");
     set_arg(k, 2, height, "sobel3x3");
-    set_arg(k, 3, ox, "sobel3x3");
-    set_arg(k, 4, oy, "sobel3x3");
-    const std::size_t global[2] = {(w + tile_ - 1) / tile_ * tile_, (h + tile_ - 1) / tile_ * tile_};
-    const std::size_t local[2] = {tile_, tile_};
+    set_arg(k, 3, src_pitch, "sobel3x3");
+    set_arg(k, 4, cl_int(shape.rows_per_item), "sobel3x3");
+    set_arg(k, 5, ox, "sobel3x3");
+    set_arg(k, 6, oy, "sobel3x3");
+    set_arg(k, 7, dst_pitch, "sobel3x3");
+    const std::size_t global[2] = {shape.groups_x * shape.group_x, shape.groups_y * shape.group_y};
+    const std::size_t local[2] = {shape.group_x, shape.group_y};
     check(clEnqueueNDRangeKernel(queue_.get(), k, 2, nullptr, global, local, 0, nullptr, &e),
           [&] { return "clEnqueueNDRangeKernel(sobel3x3, " + what + ") on " + info_.name; });
     EventHandle execute(e);
 
     // Outputs may be ROIs of larger images: copy the WxH block row by row into their strides.
     const std::size_t out_region[3] = {w * sizeof(cl_short), h, 1};
-    check(clEnqueueReadBufferRect(queue_.get(), ox, CL_FALSE, origin, origin, out_region, w * sizeof(cl_short), 0,
+    check(clEnqueueReadBufferRect(queue_.get(), ox, CL_FALSE, origin, origin, out_region, out_pitch * sizeof(cl_short), 0,
                                   std::size_t(gx.stride) * sizeof(cl_short), 0, gx.data, 0, nullptr, &e),
           [&] { return "clEnqueueReadBufferRect(Sobel gx " + what + ") on " + info_.name; });
     EventHandle read_x(e);
-    check(clEnqueueReadBufferRect(queue_.get(), oy, CL_TRUE, origin, origin, out_region, w * sizeof(cl_short), 0,
+    check(clEnqueueReadBufferRect(queue_.get(), oy, CL_TRUE, origin, origin, out_region, out_pitch * sizeof(cl_short), 0,
                                   std::size_t(gy.stride) * sizeof(cl_short), 0, gy.data, 0, nullptr, &e),
           [&] { return "clEnqueueReadBufferRect(Sobel gy " + what + ") on " + info_.name; });
     EventHandle read_y(e);  // blocking, and the queue is in order: both reads are done
     if (times) {
         times->upload_ms = event_ms(upload.get());
-        times->execute_ms = event_ms(execute.get());
+        times->execute_ms = event_ms(borders.get()) + event_ms(execute.get());
         times->download_ms = event_ms(read_x.get()) + event_ms(read_y.get());
     }
 }

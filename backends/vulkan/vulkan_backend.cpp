@@ -81,7 +81,7 @@ VulkanBackend::VulkanBackend(int index)
                              {Kind::StorageBuffer, kMaxMapChunks}, {Kind::UniformTexelBuffer, kMaxMapChunks}},
         6 * sizeof(std::uint32_t));
     sobel_kernel_ = std::make_unique<Kernel>(ctx, *cache_, std::span<const std::uint32_t>(sobel3x3), "sobel3x3",
-                                             std::vector<Binding>(3), 4 * sizeof(std::uint32_t));
+                                             std::vector<Binding>(3), 5 * sizeof(std::uint32_t));
     // Bytes one map band may hold: the storage-buffer range (bytes layout) or texel-buffer elements
     // (quad layout), capped at 1 GiB per allocation.
     constexpr std::size_t kMaxAllocation = std::size_t(1) << 30;
@@ -89,10 +89,12 @@ VulkanBackend::VulkanBackend(int index)
     map_placement_.band_quads = std::min<std::size_t>(ctx.limits().maxTexelBufferElements, kMaxAllocation / 4);
     score_group_size_ = choose_score_group_size(ctx);
     particles_per_group_ = choose_particles_per_group(ctx);
-    sobel_group_x_ = std::min<std::uint32_t>(64, ctx.limits().maxComputeWorkGroupSize[0]);
+    sobel_limits_ = sobel_work_group_limits(ctx);
+    sobel_shape_ = choose_sobel_work_shape(sobel_limits_, kSobelStripPixels, 1);  // the group; rows per item vary per call
     info_.details += ", scoring work-group " + std::to_string(score_group_size_) + " for up to " +
                      std::to_string(particles_per_group_) + " particle(s)" +
-                     (subgroups ? " with subgroup reduction" : " with shared-memory reduction");
+                     (subgroups ? " with subgroup reduction" : " with shared-memory reduction") + ", Sobel work-group " +
+                     std::to_string(sobel_shape_.group_x) + "x" + std::to_string(sobel_shape_.group_y);
 
     samples_ = std::make_unique<Mirror>(ctx, "the template sample table");
     affines_ = std::make_unique<Mirror>(ctx, "the particle affines");

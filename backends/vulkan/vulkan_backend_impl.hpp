@@ -5,6 +5,7 @@
 #include <memory>
 #include <vector>
 
+#include "../common/sobel_work_shape.hpp"
 #include "trn/backend.hpp"
 #include "vk_buffer.hpp"
 #include "vk_context.hpp"
@@ -72,7 +73,8 @@ private:
     std::unique_ptr<Kernel> ncc_kernel_, sobel_kernel_;
     std::uint32_t score_group_size_ = 64;
     std::uint32_t particles_per_group_ = 1;  // at most; see do_score
-    std::uint32_t sobel_group_x_ = 64, sobel_group_y_ = 1;
+    WorkGroupLimits sobel_limits_;  // from the device's queries (vulkan_sobel.cpp)
+    SobelWorkShape sobel_shape_;    // its work-group (rows per item are chosen per band)
     MapPlacement map_placement_;
     // Grow-only per-call buffers.
     std::unique_ptr<Mirror> samples_, affines_, sums_;
@@ -81,6 +83,9 @@ private:
     std::unique_ptr<TexelView> unused_texel_view_;
     std::unique_ptr<Mirror> sobel_src_, sobel_gx_, sobel_gy_;
 };
+
+// What the device reports for shaping Sobel work-groups (subgroup size, work-group limits).
+WorkGroupLimits sobel_work_group_limits(const Context& ctx);
 
 using Clock = std::chrono::steady_clock;
 inline double ms_since(Clock::time_point t0) {

@@ -1,38 +1,56 @@
 // 3x3 Sobel, u8 in, int16 Gx and Gy out, BORDER_REFLECT_101: bit-exact with
-// cv::Sobel(src, CV_16S, 1, 0 / 0, 1, 3). Each work-group loads its tile plus a one-pixel
-// apron into local memory once, so every source pixel is read from global memory ~once.
-// Source and outputs are packed (row stride = width); the host copies ROIs in and out.
+// cv::Sobel(src, CV_16S, 1, 0 / 0, 1, 3).
+//
+// Source layout (the host writes it): rows of `pitch` bytes (a multiple of 16), the image row
+// starting at byte TRN_SOBEL_PAD so that every 16-pixel strip is an aligned uchar16. The byte
+// left of each row (TRN_SOBEL_PAD - 1) and the byte right of it (TRN_SOBEL_PAD + width) hold the
+// reflect-101 neighbours, written by sobel3x3_columns; rows above and below the image are
+// reflected by row index (once per row, not per pixel). So the main kernel has no per-pixel
+// border branch: it reads one aligned vector and two neighbour bytes per row.
+//
+// Work: one work item computes a strip of 16 pixels over `rows_per_item` rows, keeping the
+// horizontal sums of the two previous rows (each source row is loaded once per strip).
+// Outputs are packed with a pitch of `out_pitch` int16 (a multiple of 16); the host copies the
+// width x height block out. Lanes past the width compute values nobody reads.
 #include "trn_common.clh"
 
-#ifndef TRN_TILE
-#define TRN_TILE 16  // the work-group is TRN_TILE x TRN_TILE (the build passes -D)
-#endif
-#define TRN_APRON (TRN_TILE + 2)
+#define TRN_SOBEL_PAD 16
 
-__kernel __attribute__((reqd_work_group_size(TRN_TILE, TRN_TILE, 1)))
-void sobel3x3(__global const uchar* src, int width, int height, __global short* gx, __global short* gy) {
-    __local short tile[TRN_APRON][TRN_APRON];
-    const int lx = (int)get_local_id(0);
-    const int ly = (int)get_local_id(1);
-    const int left = (int)get_group_id(0) * TRN_TILE - 1;
-    const int top = (int)get_group_id(1) * TRN_TILE - 1;
-    for (int i = ly * TRN_TILE + lx; i < TRN_APRON * TRN_APRON; i += TRN_TILE * TRN_TILE) {
-        const int tx = i % TRN_APRON;
-        const int ty = i / TRN_APRON;
-        const int sx = trn_reflect101(left + tx, width);
-        const int sy = trn_reflect101(top + ty, height);
-        tile[ty][tx] = (short)src[(size_t)sy * (size_t)width + (size_t)sx];
+// Border pass: item 2y writes the left neighbour of row y, item 2y+1 the right one.
+__kernel void sobel3x3_columns(__global uchar* src, int width, int height, int pitch) {
+    const int i = (int)get_global_id(0);
+    if (i >= 2 * height) return;
+    __global uchar* row = src + (size_t)(i >> 1) * (size_t)pitch + TRN_SOBEL_PAD;
+    const int x = (i & 1) ? width : -1;
+    row[x] = row[trn_reflect101(x, width)];
+}
+
+// Horizontal parts of one source row over a strip: d = p[x+1] - p[x-1], s = p[x-1] + 2 p[x] + p[x+1].
+void trn_sobel_row(__global const uchar* p, short16* d, short16* s) {
+    const uchar16 c = vload16(0, p);
+    const uchar16 l = (uchar16)(p[-1], c.s012, c.s3456, c.s789abcde);
+    const uchar16 r = (uchar16)(c.s123, c.s4567, c.s89abcdef, p[16]);
+    const short16 cs = convert_short16(c), ls = convert_short16(l), rs = convert_short16(r);
+    *d = rs - ls;
+    *s = ls + (cs + cs) + rs;
+}
+
+// Global size: (strips rounded up to the work-group, row blocks rounded up); items past the image return.
+__kernel void sobel3x3(__global const uchar* src, int width, int height, int pitch, int rows_per_item,
+                       __global short* gx, __global short* gy, int out_pitch) {
+    const int x = (int)get_global_id(0) * 16;
+    const int y0 = (int)get_global_id(1) * rows_per_item;
+    if (x >= width || y0 >= height) return;
+    const int y1 = min(y0 + rows_per_item, height);
+    __global const uchar* strip = src + TRN_SOBEL_PAD + x;
+    short16 d0, s0, d1, s1, d2, s2;
+    trn_sobel_row(strip + (size_t)trn_reflect101(y0 - 1, height) * (size_t)pitch, &d0, &s0);
+    trn_sobel_row(strip + (size_t)y0 * (size_t)pitch, &d1, &s1);
+    for (int y = y0; y < y1; ++y) {
+        trn_sobel_row(strip + (size_t)trn_reflect101(y + 1, height) * (size_t)pitch, &d2, &s2);
+        const size_t at = (size_t)y * (size_t)out_pitch + (size_t)x;
+        vstore16(d0 + (d1 + d1) + d2, 0, gx + at);
+        vstore16(s2 - s0, 0, gy + at);
+        d0 = d1, s0 = s1, d1 = d2, s1 = s2;
     }
-    barrier(CLK_LOCAL_MEM_FENCE);
-
-    const int x = (int)get_global_id(0);
-    const int y = (int)get_global_id(1);
-    if (x >= width || y >= height) return;
-    const int cx = lx + 1, cy = ly + 1;
-    const int a0 = tile[cy - 1][cx - 1], a1 = tile[cy - 1][cx], a2 = tile[cy - 1][cx + 1];
-    const int b0 = tile[cy][cx - 1], b2 = tile[cy][cx + 1];
-    const int c0 = tile[cy + 1][cx - 1], c1 = tile[cy + 1][cx], c2 = tile[cy + 1][cx + 1];
-    const size_t at = (size_t)y * (size_t)width + (size_t)x;
-    gx[at] = (short)((a2 - a0) + 2 * (b2 - b0) + (c2 - c0));
-    gy[at] = (short)((c0 + 2 * c1 + c2) - (a0 + 2 * a1 + a2));
 }

@@ -62,6 +62,25 @@ void sizes(Backend& dut, Backend& ref) {
     }
 }
 
+// The device kernels work on 16-pixel strips over blocks of rows (sobel_work_shape.hpp): widths
+// on both sides of strip multiples, every small height, and images big enough that one work item
+// covers several rows with a partial last block.
+void strip_edges(Backend& dut, Backend& ref) {
+    const int widths[] = {2, 3, 4, 5, 8, 12, 15, 16, 17, 18, 20, 31, 32, 33, 47, 48, 49, 63, 64, 65};
+    const int heights[] = {1, 2, 3, 4, 5, 17};
+    std::uint32_t seed = 100;
+    for (int w : widths)
+        for (int h : heights) {
+            SCOPED_TRACE(std::to_string(w) + "x" + std::to_string(h));
+            check_sobel(dut, ref, test::noise_image(w, h, seed++, 1 + (w % 3)));
+        }
+    const int tall[][2] = {{1, 33}, {2, 31}, {1001, 77}, {1283, 721}, {2050, 9}, {9, 2050}};
+    for (const auto& d : tall) {
+        SCOPED_TRACE(std::to_string(d[0]) + "x" + std::to_string(d[1]));
+        check_sobel(dut, ref, test::noise_image(d[0], d[1], seed++, 5));
+    }
+}
+
 void extremes(Backend& dut, Backend& ref) {
     test::PaddedGray board = test::noise_image(65, 33, 5, 2);
     for (int y = 0; y < 33; ++y)
@@ -76,6 +95,8 @@ void extremes(Backend& dut, Backend& ref) {
 
 }  // namespace
 
-std::vector<Case> sobel_cases() { return {{"sobel_sizes_and_strides", sizes}, {"sobel_extremes", extremes}}; }
+std::vector<Case> sobel_cases() {
+    return {{"sobel_sizes_and_strides", sizes}, {"sobel_strip_edges", strip_edges}, {"sobel_extremes", extremes}};
+}
 
 }  // namespace trn::conformance
