@@ -60,24 +60,31 @@ std::string terminal_for(const std::string& image, int w, int h) {
 
 HistogramBins shared_bins(const std::vector<PlotSeries>& series) {
     double lo = INFINITY, hi = -INFINITY;
-    std::size_t n = 0;
     for (const auto& s : series)
-        for (double v : s.values) lo = std::min(lo, v), hi = std::max(hi, v), ++n;
+        for (double v : s.values) lo = std::min(lo, v), hi = std::max(hi, v);
     HistogramBins b;
-    if (n == 0) return b;
-    // Bins from the largest series' size (sqrt rule), 5..40 across the shared range.
-    std::size_t largest = 0;
-    for (const auto& s : series) largest = std::max(largest, s.values.size());
-    b.bins = std::clamp(static_cast<int>(std::sqrt(static_cast<double>(largest))), 5, 40);
+    if (!(hi >= lo)) return b;  // no values at all
     if (!(hi > lo)) {
         b.width = std::max(std::abs(lo) * 1e-3, 1e-9);
         b.lo = lo - b.width / 2, b.bins = 1;
         return b;
     }
-    // One extra bin so the maximum lies inside the last bin rather than on its right edge.
-    b.width = (hi - lo) / b.bins;
+    // The narrowest series decides the width (sqrt rule, 5..40 bins over its own range), so a
+    // platform with a tight distribution is not a single bar beside a wide one; at most 120 bins
+    // across the shared range.
+    double width = (hi - lo) / 120;
+    double narrowest = INFINITY;
+    for (const auto& s : series) {
+        if (s.values.size() < 2) continue;
+        const auto [a, z] = std::minmax_element(s.values.begin(), s.values.end());
+        if (*z > *a) narrowest = std::min(narrowest, (*z - *a) / std::clamp(std::sqrt(static_cast<double>(s.values.size())), 5.0, 40.0));
+    }
+    if (std::isfinite(narrowest)) width = std::max(width, narrowest);
+    else width = (hi - lo) / 10;
+    b.width = width;
     b.lo = lo;
-    ++b.bins;
+    // The maximum lies inside the last bin rather than on its right edge.
+    b.bins = static_cast<int>(std::floor((hi - lo) / width)) + 1;
     return b;
 }
 
@@ -141,6 +148,8 @@ void plot_histograms(const std::vector<PlotSeries>& series, const std::string& i
     // Every panel on the same x range and bins, so platforms compare by eye; y from 0; the key
     // outside the plot area on the right, where it cannot cover a bar.
     s << "set xrange [" << x_lo << ":" << x_hi << "]\nset yrange [0:*]\nset key outside right top\n";
+    // Fixed margins: the panels' x axes line up whatever the y labels' and keys' widths.
+    s << "set lmargin at screen 0.09\nset rmargin at screen 0.74\n";
     s << "bw = " << bins.width << "\nlo = " << bins.lo << "\nbin(x) = lo + bw * floor((x - lo) / bw) + bw / 2\nset boxwidth bw absolute\n";
     for (std::size_t k = 0; k < series.size(); ++k) {
         const auto& v = series[k].values;
@@ -152,7 +161,7 @@ void plot_histograms(const std::vector<PlotSeries>& series, const std::string& i
             continue;
         }
         const double mean = mean_of(v);
-        s << "set arrow 1 from " << mean << ", graph 0 to " << mean << ", graph 1 nohead lw 2 lc rgb 'red'\n";
+        s << "set arrow 1 from " << mean << ", graph 0 to " << mean << ", graph 1 nohead lw 2 lc rgb 'red' front\n";
         s << "plot " << gnuplot_string(dat) << " using (bin($1)):(1.0) smooth frequency with boxes lc rgb '#4393c3' title 'energy per frame', "
           << "NaN with lines lw 2 lc rgb 'red' title sprintf('mean %.4g', " << mean << ")\nunset arrow 1\n";
     }

@@ -112,6 +112,12 @@ TEST(Plots, SharedBinsHoldEveryValueOfEverySeries) {
             EXPECT_GE(k, 0) << v;
             EXPECT_LT(k, b.bins) << v << ": outside the drawn bins";
         }
+    // A tight platform beside a wide one still gets several bars (the narrowest spread sets the width).
+    std::vector<double> narrow;
+    for (int i = 0; i < 16; ++i) narrow.push_back(3.0 + 0.025 * i);
+    const HistogramBins nb = shared_bins({{"wide", {1.0, 2.0, 4.0, 6.0}}, {"narrow", narrow}});
+    EXPECT_GE((3.375 - 3.0) / nb.width, 4.0) << nb.width;
+    EXPECT_LE(nb.bins, 121);
     EXPECT_NE(terminal_for("x.pdf", 900, 300).find("pdfcairo"), std::string::npos);
     EXPECT_NE(terminal_for("x.SVG", 900, 300).find("terminal svg"), std::string::npos);
     EXPECT_NE(terminal_for("x.png", 900, 300).find("pngcairo"), std::string::npos);
