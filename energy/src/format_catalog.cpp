@@ -46,7 +46,8 @@ const std::vector<PowerLogFormat>& power_log_format_catalog() {
 std::string format_catalog_text() {
     std::ostringstream os;
     os << "Power-log formats (--format NAME, or auto). Every format also takes --timezone NAME / --utc-offset +HH:MM\n"
-          "for local time stamps; --opt KEY=VALUE passes the options below.\n";
+          "for local time stamps and --opt time_uncertainty_s=S (each stamp's time known to +-S s, added to the\n"
+          "error bounds); --opt KEY=VALUE passes the options below.\n";
     for (const auto& f : power_log_format_catalog()) {
         os << "\n" << f.name << ": " << f.source << "\n";
         os << "  columns: " << f.columns << "\n";

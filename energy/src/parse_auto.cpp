@@ -1,6 +1,7 @@
 // Format names, recognition of a log from its text, and reading a log file.
 
 #include <algorithm>
+#include <optional>
 
 #include "text_input.hpp"
 #include "trn/energy/parsers.hpp"
@@ -107,12 +108,26 @@ PowerTrace parse_in_format(std::string_view input, const std::string& name, cons
 
 }  // namespace
 
-// timezone= / utc_offset= apply to every format with local stamps, so they are taken here.
+// timezone= / utc_offset= apply to every format with local stamps, and time_uncertainty_s= to
+// any log whose logger says how late or early its stamps can be (an INA3221 read through hwmon
+// returns the last of its conversions: give its conversion time); so they are taken here.
 PowerTrace parse_power_log(std::string_view input, const std::string& name, const std::string& format, const ParseOptions& options) {
     ParseOptions rest = options;
     const auto zone = take_time_zone(rest);
+    std::optional<double> uncertainty;
+    if (const auto it = rest.find("time_uncertainty_s"); it != rest.end()) {
+        uncertainty = text::to_number(it->second);
+        if (!uncertainty || *uncertainty < 0 || *uncertainty > 10)
+            throw Error(name + ": option time_uncertainty_s='" + it->second + "' must be a number of seconds in [0, 10]");
+        rest.erase(it);
+    }
     PowerTrace tr = parse_in_format(input, name, format, rest);
     if (zone) apply_time_zone(tr, *zone);
+    if (uncertainty) {
+        tr.time_uncertainty_s = *uncertainty;
+        tr.settings["time_uncertainty_s"] = options.at("time_uncertainty_s");
+        tr.notes.push_back("sample times uncertain by +-" + options.at("time_uncertainty_s") + " s (time_uncertainty_s): included in the error bounds");
+    }
     return tr;
 }
 

@@ -14,6 +14,7 @@
 #include "trn/energy/ina219.hpp"
 #include "trn/energy/parsers.hpp"
 #include "trn/energy/run_report.hpp"
+#include "trn/error.hpp"
 
 namespace trn::energy {
 namespace {
@@ -73,6 +74,18 @@ TEST(TimingBound, Ina219BoundsHoldAndNeedTheTimingTerm) {
             if (!adc) EXPECT_GT(without, 3u);
         }
     }
+}
+
+// Any log can state its timing uncertainty (e.g. an INA3221's conversion time through hwmon).
+TEST(TimingBound, UncertaintyOptionWidensTheBoundOfAnyLog) {
+    const std::string log = "time_s,power_mW\n0.00,1000\n0.01,1000\n0.02,5000\n0.03,5000\n0.04,1000\n0.05,1000\n";
+    const PowerTrace plain = parse_power_log(log, "ina.csv");
+    const PowerTrace timed = parse_power_log(log, "ina.csv", "auto", {{"time_uncertainty_s", "0.002"}});
+    EXPECT_EQ(timed.time_uncertainty_s, 0.002);
+    // Variation 8 W within [0.013, 0.037] +- 2 ms: the bound grows by 2 x 0.002 x 8 = 0.032 J.
+    EXPECT_NEAR(integrate_interval(timed, 0.015, 0.035).error_j - integrate_interval(plain, 0.015, 0.035).error_j, 0.032, 1e-12);
+    EXPECT_THROW(parse_power_log(log, "ina.csv", "auto", {{"time_uncertainty_s", "-1"}}), trn::Error);
+    EXPECT_THROW(parse_power_log(log, "ina.csv", "auto", {{"time_uncertainty_s", "nan"}}), trn::Error);
 }
 
 TEST(TimingBound, CalibrationFromTheLogIsInTheProvenance) {
