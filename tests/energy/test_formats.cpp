@@ -121,7 +121,7 @@ TEST(Formats, UnixEpochSecondsAreAbsolute) {
     EXPECT_FALSE(rel.wall_clock);
 }
 
-TEST(Formats, CatalogNamesEveryFormatAndItsExamplesParse) {
+TEST(Formats, CatalogNamesEveryFormatAndTheCommandPrintsIt) {
     const auto& cat = power_log_format_catalog();
     std::vector<std::string> names;
     for (const auto& f : cat) names.push_back(f.name);

@@ -15,8 +15,7 @@ struct PowerLogFormat {
     std::string options;  // --opt KEY=VALUE it accepts
 };
 
-// In power_log_formats() order; a test checks the two lists agree and that each example's
-// format is what "auto" recognises where a single line is enough.
+// In power_log_formats() order (tests/energy/test_formats.cpp checks the two lists agree).
 const std::vector<PowerLogFormat>& power_log_format_catalog();
 // The catalog as text for a terminal.
 std::string format_catalog_text();
