@@ -16,9 +16,11 @@ namespace trn::cli {
 void add_energy_integrate_command(CLI::App* energy);
 void add_energy_compare_command(CLI::App* energy);
 void add_energy_sample_command(CLI::App* energy);
+void add_energy_formats_command(CLI::App* energy);
+void add_log_time_zone_options(CLI::App* c, std::vector<std::string>* opts);
 
 void add_energy_command(CLI::App& app) {
-    auto* energy = app.add_subcommand("energy", "Power logs -> joules (inspect, integrate-span, integrate, compare, sample)");
+    auto* energy = app.add_subcommand("energy", "Power logs -> joules (inspect, integrate-span, integrate, compare, sample, formats)");
     energy->require_subcommand(1);
     struct Args {
         std::string log, format = "auto";
@@ -31,6 +33,7 @@ void add_energy_command(CLI::App& app) {
         c->add_option("log", a->log, "Power log file")->required();
         c->add_option("--format", a->format, "auto or a format name (see docs/ENERGY.md)")->capture_default_str();
         c->add_option("--opt", a->opts, "Parser option KEY=VALUE (repeatable)");
+        add_log_time_zone_options(c, &a->opts);
     };
     auto* inspect = energy->add_subcommand("inspect", "Parse a power log and report format, sample rate, gaps and hygiene notes");
     add_log_options(inspect);
@@ -62,6 +65,7 @@ void add_energy_command(CLI::App& app) {
     add_energy_integrate_command(energy);
     add_energy_compare_command(energy);
     add_energy_sample_command(energy);
+    add_energy_formats_command(energy);
 }
 
 }  // namespace trn::cli

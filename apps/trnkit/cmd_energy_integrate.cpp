@@ -14,6 +14,8 @@
 
 namespace trn::cli {
 
+void add_log_time_zone_options(CLI::App* c, std::vector<std::string>* opts);  // cmd_energy_formats.cpp
+
 void add_energy_integrate_command(CLI::App* energy) {
     struct Args {
         std::string log, format = "auto", markers, align, platform, json, csv, plot, clock = "real";
@@ -25,8 +27,9 @@ void add_energy_integrate_command(CLI::App* energy) {
     auto a = std::make_shared<Args>();
     auto* c = energy->add_subcommand("integrate", "Per-frame energy of a power log between the frame markers of `trnkit frames`");
     c->add_option("log", a->log, "Power log file")->required();
-    c->add_option("--format", a->format, "auto or a format name (see docs/ENERGY.md)")->capture_default_str();
+    c->add_option("--format", a->format, "auto or a format name (see trnkit energy formats)")->capture_default_str();
     c->add_option("--opt", a->opts, "Parser option KEY=VALUE (repeatable)");
+    add_log_time_zone_options(c, &a->opts);
     c->add_option("--markers", a->markers, "Marker file written by trnkit frames")->required();
     auto* offset = c->add_option("--offset", a->offset, "Log time = marker time + OFFSET (s); with --align auto: centre of the search")
                        ->check(real_in(-1e12, 1e12));

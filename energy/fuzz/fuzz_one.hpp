@@ -11,6 +11,7 @@
 #include "trn/energy/integrate.hpp"
 #include "trn/energy/markers.hpp"
 #include "trn/energy/parsers.hpp"
+#include "trn/energy/time_zone.hpp"
 #include "trn/error.hpp"
 
 namespace trn::energy::fuzz {
@@ -45,6 +46,15 @@ inline bool run_one(const std::string& format, std::string_view input) {
     if (!std::isfinite(run.idle_w)) violation("NaN idle power");
     for (const auto& f : run.frames)
         if (!std::isfinite(f.gross_j) || !std::isfinite(f.net_j) || !std::isfinite(f.error_j)) violation("NaN/inf frame joules");
+    // Local wall-clock stamps moved to UTC must stay finite and increasing (or be refused).
+    if (tr.local_time) {
+        try {
+            apply_time_zone(tr, TimeZone::fixed("+05:30"));
+            for (std::size_t i = 1; i < tr.size(); ++i)
+                if (!(tr.t[i] > tr.t[i - 1]) || !std::isfinite(tr.t[i])) violation("time zone broke the order of samples");
+        } catch (const trn::Error&) {
+        }
+    }
     return true;
 }
 

@@ -68,6 +68,20 @@ void mean_rules(const PowerTrace& tr, double t_begin, double s, double e, double
     instant_rules(mid, s, e, alt, hold);
 }
 
+// Sample times uncertain by +-d: the curve through the true times equals the one we integrate
+// with its time axis moved by at most d (piecewise linearly, knot by knot), so at each instant
+// the two differ by at most the curve's variation within +-d of it; integrated over [s, e] that
+// is at most 2 d x the total variation of the samples over [s - d, e + d].
+double timing_error(const PowerTrace& tr, double s, double e) {
+    const double d = tr.time_uncertainty_s;
+    if (!(d > 0) || tr.size() < 2) return 0;
+    std::size_t k = static_cast<std::size_t>(std::upper_bound(tr.t.begin(), tr.t.end(), s - d) - tr.t.begin());
+    k = k == 0 ? 0 : k - 1;
+    double variation = 0;
+    for (; k + 1 < tr.size() && tr.t[k] < e + d; ++k) variation += std::abs(tr.w[k + 1] - tr.w[k]);
+    return 2 * d * variation;
+}
+
 }  // namespace
 
 IntervalEnergy integrate_interval(const PowerTrace& tr, double start, double end, Rule rule) {
@@ -91,7 +105,7 @@ IntervalEnergy integrate_interval(const PowerTrace& tr, double start, double end
     }
     // Between two samples the power can be anywhere between them (a step at either end), so
     // each piece adds |w[k+1] - w[k]| x its length; summed without cancellation between edges.
-    r.error_j = std::max(spread, std::abs(a - b)) + 0.5 * tr.resolution_w * (end - start);
+    r.error_j = std::max(spread, std::abs(a - b)) + 0.5 * tr.resolution_w * (end - start) + timing_error(tr, start, end);
     return r;
 }
 

@@ -1,7 +1,11 @@
 // Format names, recognition of a log from its text, and reading a log file.
 
+#include <algorithm>
+#include <optional>
+
 #include "text_input.hpp"
 #include "trn/energy/parsers.hpp"
+#include "trn/energy/time_zone.hpp"
 
 namespace trn::energy {
 
@@ -17,8 +21,24 @@ ParseOptions parse_option_list(const std::vector<std::string>& items) {
 
 std::vector<std::string> power_log_formats() {
     return {"ina219-csv", "ina219-tuples", "ina219-raw", "nvidia-smi", "tegrastats", "pmt", "rapl-tools",
-            "perf-stat", "hwmon-records", "trnkit"};
+            "perf-stat", "hwmon-records", "powerstat", "turbostat", "trnkit"};
 }
+
+namespace {
+
+// A --format=csv,noheader row: comma-separated, one field an nvidia-smi time stamp
+// "YYYY/MM/DD HH:MM:SS.mmm" (slashes: ISO dates with '-' belong to other loggers).
+bool looks_like_headerless_nvidia_smi(std::string_view l) {
+    const auto fields = text::split(l, ',');
+    if (fields.size() < 2) return false;
+    for (auto f : fields) {
+        const auto v = text::trim(f);
+        if (v.size() >= 19 && v[4] == '/' && v[7] == '/' && text::parse_datetime(v)) return true;
+    }
+    return false;
+}
+
+}  // namespace
 
 std::string detect_power_log_format(std::string_view input, const std::string& name) {
     const auto lines = text::split_lines(input);
@@ -34,7 +54,8 @@ std::string detect_power_log_format(std::string_view input, const std::string& n
         if (text::lower(s).rfind("time_s,shunt,bus", 0) == 0) return "ina219-raw";
         break;
     }
-    if (text::starts_with(l, "timestamp") && l.find("power.draw") != std::string_view::npos) return "nvidia-smi";
+    if (l.find("timestamp") != std::string_view::npos && l.find("power.draw") != std::string_view::npos) return "nvidia-smi";
+    if (looks_like_headerless_nvidia_smi(l)) return "nvidia-smi";
     if (text::starts_with(l, "timestamp ") && l.find(',') == std::string_view::npos) return "pmt";
     if (l.front() == '(') return "ina219-tuples";
     if (text::starts_with(l, "Timestamp:")) return "hwmon-records";
@@ -45,6 +66,10 @@ std::string detect_power_log_format(std::string_view input, const std::string& n
             (s.find("VDD_") != std::string_view::npos || s.find("POM_") != std::string_view::npos || s.find("VIN_") != std::string_view::npos))
             return "tegrastats";
         if (s.find(",Joules,") != std::string_view::npos) return "perf-stat";
+        const auto tok = text::split_ws(s);
+        if (!tok.empty() && tok.front() == "Time" && std::find(tok.begin(), tok.end(), "Watts") != tok.end()) return "powerstat";
+        for (auto t : tok)
+            if (t == "PkgWatt" || t == "CorWatt" || t == "RAMWatt" || t == "SysWatt") return "turbostat";
     }
     for (const auto& line : lines)
         if (text::starts_with(text::trim(line.text), "Total Energy:"))
@@ -60,7 +85,9 @@ std::string detect_power_log_format(std::string_view input, const std::string& n
                                               "'); name the format with --format (" + "see trnkit energy formats)");
 }
 
-PowerTrace parse_power_log(std::string_view input, const std::string& name, const std::string& format, const ParseOptions& options) {
+namespace {
+
+PowerTrace parse_in_format(std::string_view input, const std::string& name, const std::string& format, const ParseOptions& options) {
     const std::string f = format == "auto" ? detect_power_log_format(input, name) : format;
     if (f == "ina219-csv") return parse_ina219_csv(input, name, options);
     if (f == "ina219-tuples") return parse_ina219_tuples(input, name, options);
@@ -71,10 +98,37 @@ PowerTrace parse_power_log(std::string_view input, const std::string& name, cons
     if (f == "rapl-tools") return parse_rapl_tools_csv(input, name, options);
     if (f == "perf-stat") return parse_perf_stat(input, name, options);
     if (f == "hwmon-records") return parse_hwmon_records(input, name, options);
+    if (f == "powerstat") return parse_powerstat(input, name, options);
+    if (f == "turbostat") return parse_turbostat(input, name, options);
     if (f == "trnkit") return parse_trnkit_power(input, name, options);
     std::string list;
     for (const auto& n : power_log_formats()) list += (list.empty() ? "" : ", ") + n;
     throw Error("--format '" + format + "': unknown (known: auto, " + list + ")");
+}
+
+}  // namespace
+
+// timezone= / utc_offset= apply to every format with local stamps, and time_uncertainty_s= to
+// any log whose logger says how late or early its stamps can be (an INA3221 read through hwmon
+// returns the last of its conversions: give its conversion time); so they are taken here.
+PowerTrace parse_power_log(std::string_view input, const std::string& name, const std::string& format, const ParseOptions& options) {
+    ParseOptions rest = options;
+    const auto zone = take_time_zone(rest);
+    std::optional<double> uncertainty;
+    if (const auto it = rest.find("time_uncertainty_s"); it != rest.end()) {
+        uncertainty = text::to_number(it->second);
+        if (!uncertainty || *uncertainty < 0 || *uncertainty > 10)
+            throw Error(name + ": option time_uncertainty_s='" + it->second + "' must be a number of seconds in [0, 10]");
+        rest.erase(it);
+    }
+    PowerTrace tr = parse_in_format(input, name, format, rest);
+    if (zone) apply_time_zone(tr, *zone);
+    if (uncertainty) {
+        tr.time_uncertainty_s = *uncertainty;
+        tr.settings["time_uncertainty_s"] = options.at("time_uncertainty_s");
+        tr.notes.push_back("sample times uncertain by +-" + options.at("time_uncertainty_s") + " s (time_uncertainty_s): included in the error bounds");
+    }
+    return tr;
 }
 
 // Read with a size limit: a device such as /dev/zero given as a log must not fill the memory.

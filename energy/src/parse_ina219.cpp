@@ -49,6 +49,16 @@ struct Column {
     std::string name;
 };
 
+// Median of the steps between consecutive increasing times (0 when there are none).
+double median_step(const std::vector<double>& t) {
+    std::vector<double> d;
+    for (std::size_t i = 1; i < t.size(); ++i)
+        if (t[i] > t[i - 1]) d.push_back(t[i] - t[i - 1]);
+    if (d.empty()) return 0;
+    std::nth_element(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(d.size() / 2), d.end());
+    return d[d.size() / 2];
+}
+
 }  // namespace
 
 PowerTrace parse_ina219_csv(std::string_view input, const std::string& name, const ParseOptions& options) {
@@ -176,7 +186,8 @@ PowerTrace parse_ina219_csv(std::string_view input, const std::string& name, con
             b.note(buf);
         }
     }
-    if (b.trace().wall_clock && !zone_known) b.note("time stamps have no time zone; taken as UTC");
+    b.trace().local_time = b.trace().wall_clock && !zone_known;
+    if (b.trace().local_time) b.note("time stamps have no time zone; taken as UTC (--timezone/--utc-offset to convert)");
     if (!b.trace().w.empty() && *std::min_element(b.trace().w.begin(), b.trace().w.end()) < 0)
         b.note("negative power readings present (shunt offset or reverse current); kept as read");
     return b.finish();
@@ -276,7 +287,21 @@ PowerTrace parse_ina219_raw(std::string_view input, const std::string& name, con
     if (ct < 0 || cs < 0 || cb < 0) text::fail(name, lines[hi].number, "header must name time_s, shunt and bus (optional current, power)");
     if (use == "power" && cp < 0) throw Error(parser + ": use=power but the log has no power column");
 
-    const double time_shift = time_ref == "adc" ? 1.5 * cfg.conversion_time_s() : 0.0;
+    // A read returns the last finished shunt+bus cycle (2 tc): it ended between the read and
+    // min(poll period, 2 tc) before it (a faster poll sees CNVR=0 until a new cycle ends), and the
+    // shunt window's centre is 1.5 tc before that end. time_ref=adc stamps the middle of that
+    // range, +- half its width (one conversion time when polling slower than the cycle);
+    // time_ref=read keeps the read time, uncertain by the whole lag.
+    const double tc = cfg.conversion_time_s();
+    std::vector<double> reads;
+    for (std::size_t li = hi + 1; li < lines.size() && reads.size() < 100000; ++li)
+        if (!is_comment(lines[li].text))
+            if (const auto f = text::split(lines[li].text, ','); static_cast<std::size_t>(ct) < f.size())
+                if (const auto t = text::to_number(f[ct])) reads.push_back(*t);
+    const double poll = median_step(reads);
+    const double lag_range = poll > 0 ? std::min(poll, 2 * tc) : 2 * tc;
+    const double time_shift = time_ref == "adc" ? 1.5 * tc + 0.5 * lag_range : 0.0;
+    const double time_uncertainty = time_ref == "adc" ? 0.5 * lag_range : 1.5 * tc + lag_range;
     TraceBuilder b(name, "ina219-raw");
     b.trace().quantity = use == "power" ? "power register" : (cc >= 0 ? "bus x current register" : "bus x shunt/R");
     std::size_t overflow = 0, first_overflow = 0;
@@ -320,8 +345,16 @@ PowerTrace parse_ina219_raw(std::string_view input, const std::string& name, con
         max_bus = std::max(max_bus, d.bus_v);
         b.add(l.number, *t - time_shift, d.power_w);
     }
-    if (time_shift > 0)
-        b.note("sample times moved 1.5 conversion times before the read (centre of the shunt ADC window, read assumed right after the conversion); time_ref=read keeps read times");
+    b.trace().time_uncertainty_s = time_uncertainty;
+    b.trace().settings = merged;
+    b.trace().settings["time_ref"] = time_ref;
+    b.trace().settings["use"] = use;
+    if (time_shift > 0) {
+        char buf[300];
+        std::snprintf(buf, sizeof buf, "sample times moved %.4g ms before the read (centre of the shunt ADC window of the last cycle, which ended 0..%.4g ms "
+                      "before the read), +- %.4g ms in the error bound; time_ref=read keeps read times", 1e3 * time_shift, 1e3 * lag_range, 1e3 * time_uncertainty);
+        b.note(buf);
+    }
     if (overflow) b.note(std::to_string(overflow) + " sample(s) flagged overflow (OVF or shunt beyond +-" + std::to_string(cfg.pga_mv) +
                          " mV; first at line " + std::to_string(first_overflow) + "): their power is a lower bound");
     b.trace().resolution_w = use == "power" ? 20 * cfg.current_lsb_a : max_bus * cfg.current_lsb_a;

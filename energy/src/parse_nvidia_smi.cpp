@@ -17,17 +17,58 @@ std::string bare_name(std::string_view column) {
     return text::lower(column);
 }
 
+// Column names for a --format=csv,noheader log: from columns=..., else guessed from the first
+// row (a YYYY/MM/DD time stamp, a whole number before it = index, the one field in W = power).
+std::vector<std::string> headerless_columns(std::string_view row, const std::string& name, std::size_t line, const OptionReader& o) {
+    std::vector<std::string> cols;
+    if (const auto given = o.text("columns")) {
+        for (auto f : text::split(*given, ',')) cols.push_back(bare_name(f));
+        return cols;
+    }
+    const auto f = text::split(row, ',');
+    int ts = -1;
+    std::vector<int> watts, numbers;
+    for (std::size_t i = 0; i < f.size(); ++i) {
+        const std::string_view v = text::trim(f[i]);
+        if (ts < 0 && text::parse_datetime(v)) ts = static_cast<int>(i);
+        else if (v.size() > 2 && v.substr(v.size() - 2) == " W" && text::to_number(v.substr(0, v.size() - 2))) watts.push_back(static_cast<int>(i));
+        else if (text::to_number(v)) numbers.push_back(static_cast<int>(i));
+    }
+    if (ts < 0) text::fail(name, line, "no header and no YYYY/MM/DD HH:MM:SS time stamp in the first row; pass columns=timestamp,power.draw,...");
+    const bool index_first = ts == 1 && !numbers.empty() && numbers.front() == 0;
+    if (index_first) numbers.erase(numbers.begin());
+    int power = -1;
+    if (watts.size() == 1) power = watts.front();
+    else if (watts.empty() && numbers.size() == 1) power = numbers.front();
+    if (power < 0)
+        text::fail(name, line, "no header, and the power field cannot be told from the others (" + std::to_string(watts.size() + numbers.size()) +
+                                   " candidates); pass columns=NAME,... as given to --query-gpu");
+    cols.assign(f.size(), "");
+    for (std::size_t i = 0; i < f.size(); ++i) cols[i] = "field" + std::to_string(i + 1);
+    cols[ts] = "timestamp";
+    cols[power] = "power.draw";
+    if (index_first) cols[0] = "index";
+    return cols;
+}
+
 }  // namespace
 
 PowerTrace parse_nvidia_smi(std::string_view input, const std::string& name, const ParseOptions& options) {
     const std::string parser = name + " (nvidia-smi)";
-    OptionReader o(options, parser, {"column", "gpu"});
+    OptionReader o(options, parser, {"column", "gpu", "columns"});
     const auto lines = text::split_lines(input);
     std::size_t hi = 0;
     while (hi < lines.size() && text::trim(lines[hi].text).empty()) ++hi;
     if (hi == lines.size()) throw Error(parser + ": empty file");
     std::vector<std::string> cols;
     for (auto f : text::split(lines[hi].text, ',')) cols.push_back(bare_name(f));
+    // --format=csv,noheader: the first line is already a row (it has no 'timestamp' name).
+    const bool headerless = o.text("columns") || std::find(cols.begin(), cols.end(), "timestamp") == cols.end();
+    std::size_t first_row = hi + 1;
+    if (headerless) {
+        cols = headerless_columns(lines[hi].text, name, lines[hi].number, o);
+        first_row = hi;
+    }
     auto col = [&](const std::string& n) {
         const auto it = std::find(cols.begin(), cols.end(), n);
         return it == cols.end() ? -1 : static_cast<int>(it - cols.begin());
@@ -50,12 +91,12 @@ PowerTrace parse_nvidia_smi(std::string_view input, const std::string& name, con
     b.trace().wall_clock = true;
     b.trace().resolution_w = 0.01;
     std::set<std::string> ids;
-    for (std::size_t li = hi + 1; li < lines.size(); ++li) {
+    for (std::size_t li = first_row; li < lines.size(); ++li) {
         const auto& l = lines[li];
         if (text::trim(l.text).empty()) continue;
         const auto f = text::split(l.text, ',');
         if (f.size() != cols.size()) {
-            if (text::trim(l.text) == text::trim(lines[hi].text)) { b.drop(l.number, "repeated header"); continue; }
+            if (!headerless && text::trim(l.text) == text::trim(lines[hi].text)) { b.drop(l.number, "repeated header"); continue; }
             text::fail(name, l.number, "expected " + std::to_string(cols.size()) + " fields as in the header, found " + std::to_string(f.size()));
         }
         const auto t = text::parse_datetime(f[ct]);
@@ -95,7 +136,8 @@ PowerTrace parse_nvidia_smi(std::string_view input, const std::string& name, con
         if (gpu && r.id != *gpu) continue;
         b.add(r.line, r.t, r.w);
     }
-    b.note("time stamps have no time zone (the logging machine's local time); taken as UTC");
+    b.trace().local_time = true;
+    b.note("time stamps have no time zone (the logging machine's local time); taken as UTC (--timezone/--utc-offset to convert)");
     return b.finish();
 }
 

@@ -100,7 +100,8 @@ PowerTrace parse_tegrastats(std::string_view input, const std::string& name, con
     if (unstamped)
         b.note("lines carry no time stamps: sample i is placed at i x " + std::to_string(interval * 1e3) +
                " ms (assumed tegrastats --interval); timing is only as good as that assumption");
-    if (stamped) b.note("time stamps have 1 s resolution and no time zone; taken as UTC");
+    b.trace().local_time = stamped > 0;
+    if (stamped) b.note("time stamps have 1 s resolution and no time zone; taken as UTC (--timezone/--utc-offset to convert)");
     return b.finish();
 }
 

@@ -1,5 +1,6 @@
 #include "trn/energy/run_report.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -46,6 +47,37 @@ Int whole_number(const json& object, const char* key, const std::string& name) {
                 v.dump().substr(0, 40) + ")");
 }
 
+// No frame inside the log is never a result: say why. On one clock, a log that would hold every
+// frame if moved by a whole number of quarter hours is stamped in local time (the classic: a log
+// one hour ahead of UTC markers).
+void refuse_no_frame_inside(const PowerTrace& trace, const RunEnergy& run, AlignMode mode) {
+    if (run.frames.empty() || run.usable() > 0) return;
+    for (const auto& f : run.frames)
+        if (f.flag != "not covered by the trace") return;  // covered but too few samples: flagged frames tell that
+    double fs = run.frames.front().start, fe = run.frames.front().end;
+    for (const auto& f : run.frames) fs = std::min(fs, f.start), fe = std::max(fe, f.end);
+    const double tb = trace.first_interval_start.value_or(trace.t.front()), te = trace.t.back();
+    char span[200];
+    std::snprintf(span, sizeof span, "the log covers %.3f..%.3f s, the %zu frame(s) %.3f..%.3f s", tb, te, run.frames.size(), fs, fe);
+    if (mode == AlignMode::SameClock && trace.wall_clock)
+        for (int k = 1; k <= 56; ++k)
+            for (int sign : {1, -1}) {
+                const double shift = sign * k * 900.0;
+                if (fs + shift >= tb && fe + shift <= te) {
+                    char why[400];
+                    const int minutes = k * 15;
+                    std::snprintf(why, sizeof why,
+                                  "%s: none of the frames lies inside the log (%s), but all would if the log's stamps were read %d h %02d min %s: "
+                                  "they look like local time; pass --utc-offset %c%02d:%02d (or --timezone NAME)",
+                                  trace.source.c_str(), span, minutes / 60, minutes % 60, sign > 0 ? "earlier" : "later", sign > 0 ? '+' : '-',
+                                  minutes / 60, minutes % 60);
+                    throw Error(why);
+                }
+            }
+    throw Error(trace.source + ": none of the frames lies inside the log (" + span +
+                "): another run's log, a wrong --offset, or a clock mismatch (--clock, --align auto)");
+}
+
 }  // namespace
 
 RunReport integrate_run(const PowerTrace& trace, const MarkerFile& markers, const IntegrateRequest& q) {
@@ -55,6 +87,7 @@ RunReport integrate_run(const PowerTrace& trace, const MarkerFile& markers, cons
     r.log_format = trace.format, r.log_quantity = trace.quantity, r.log_notes = trace.notes;
     r.sampling = describe_sampling(trace);
     r.resolution_w = trace.resolution_w;
+    r.parse_options = trace.settings;  // calibration read from the log; integrate_files adds the options given
     r.marker_meta = markers.meta;
     r.rule = q.integration.rule == Rule::Hold ? "hold" : "trapezoid";
     r.clock = q.realtime ? "realtime" : "monotonic";
@@ -85,6 +118,7 @@ RunReport integrate_run(const PowerTrace& trace, const MarkerFile& markers, cons
     }
     r.alignment.mapping = mapping;
     const RunEnergy run = integrate_frames(trace, marker_intervals(markers, mapping), q.integration);
+    refuse_no_frame_inside(trace, run, q.align);
     r.shift = shift_sensitivity(trace, markers, mapping, q.integration);
     r.idle_w = run.idle_w, r.idle_first_w = run.idle_first_w, r.idle_last_w = run.idle_last_w, r.idle_segments = run.idle_segments;
     r.warnings = trace.warnings;  // implausible readings dropped by the parser
@@ -114,7 +148,9 @@ RunReport integrate_files(const std::string& log_path, const std::string& format
     RunReport r = integrate_run(trace, markers, q);
     r.log_path = log_path, r.markers_path = markers_path;
     r.log_sha256 = sha256_hex(log_text), r.markers_sha256 = sha256_hex(marker_text);
-    r.parse_options = opts;
+    // Provenance: the options given, and the settings the parser read from the log itself
+    // (an INA219 log's calibration comments); an option given overrides the log, as in the parser.
+    for (const auto& [k, v] : opts) r.parse_options[k] = v;
     return r;
 }
 

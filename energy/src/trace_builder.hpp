@@ -56,6 +56,7 @@ public:
         for (const auto& [reason, cf] : dropped_)
             trace_.notes.push_back("dropped " + std::to_string(cf.first) + " row(s): " + reason + " (first at line " +
                                    std::to_string(cf.second) + ")");
+        recognise_unix_time();
         if (trace_.t.size() < 2)
             throw Error(trace_.source + ": fewer than two usable samples (" + std::to_string(trace_.t.size()) + ") in this " + trace_.format + " log" +
                         (implausible_ || dropped_.empty() ? why_few : "; " + trace_.notes.back()));
@@ -63,6 +64,17 @@ public:
     }
 
 private:
+    // Numbers that can only be UNIX seconds (2000..2100; a relative clock or CLOCK_MONOTONIC
+    // would mean decades of uptime) are absolute: the log then needs no alignment options.
+    // trnkit's own format states its clock in the header and is left alone.
+    void recognise_unix_time() {
+        if (trace_.wall_clock || trace_.format == "trnkit" || trace_.t.empty()) return;
+        if (trace_.t.front() >= kUnix2000 && trace_.t.back() <= kUnix2100) {
+            trace_.wall_clock = true;
+            trace_.notes.push_back("time values are UNIX epoch seconds (between 2000 and 2100): taken as absolute UTC time");
+        }
+    }
+    static constexpr double kUnix2000 = 946684800, kUnix2100 = 4102444800;
     PowerTrace trace_;
     std::map<std::string, std::pair<std::size_t, std::size_t>> dropped_;
     static constexpr const char* kImplausible = "power outside the plausible range (see warnings)";

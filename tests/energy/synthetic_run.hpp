@@ -4,9 +4,11 @@
 // sync burst or frame runs. The true energy of every frame is therefore known exactly.
 #include <cmath>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "trn/energy/markers.hpp"
+#include "trn/energy/run_report.hpp"
 #include "trn/energy/trace.hpp"
 
 namespace trn::energy::test {
@@ -67,6 +69,19 @@ inline PowerTrace sample_trace(const MarkerFile& m, const TraceClock& c, double 
         tr.w.push_back(idle_w + (busy_at(m, c.to_marker(tau)) ? busy_w : 0) + n);
     }
     return tr;
+}
+
+// A run report with the given per-frame energies (J, gross = net), for comparisons whose
+// input values are chosen directly; distinct `log_hash`es keep compare from refusing repeats.
+inline RunReport report_with_energies(const std::string& platform, const std::vector<double>& joules, const std::string& log_hash) {
+    RunReport r;
+    r.platform = platform, r.log_sha256 = log_hash, r.markers_sha256 = "m";
+    for (std::size_t i = 0; i < joules.size(); ++i) {
+        ReportFrame f;
+        f.energy.id = static_cast<int>(i), f.energy.gross_j = f.energy.net_j = joules[i], f.marker_ms = 5 + 0.1 * static_cast<double>(i % 7);
+        r.frames.push_back(f);
+    }
+    return r;
 }
 
 }  // namespace trn::energy::test

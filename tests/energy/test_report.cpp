@@ -67,11 +67,11 @@ TEST(Compare, TablesStatisticsAndProvenance) {
     const PairStats& ab = c.pairs[0];
     EXPECT_EQ(ab.a, "A");
     EXPECT_EQ(ab.b, "B");
-    EXPECT_LT(ab.p_holm, 1e-6);
+    EXPECT_LT(ab.p_holm(), 1e-6);
     EXPECT_NEAR(ab.ratio.ratio, 2.0 / 3.0, 0.03);
     EXPECT_LT(ab.ratio.ci_low, ab.ratio.ratio);
     EXPECT_GT(ab.ratio.ci_high, ab.ratio.ratio);
-    for (const auto& p : c.pairs) EXPECT_GE(p.p_holm, p.t.p);
+    for (const auto& p : c.pairs) EXPECT_GE(p.p_holm(), p.t().p);
     for (const auto& p : c.platforms) ASSERT_TRUE(p.shapiro.has_value()) << p.shapiro_note;
     const std::string md = tables_markdown(c);
     for (const char* h : {"Table 1", "Table 2", "Table 3", "| A | B |", "Welch"}) EXPECT_NE(md.find(h), std::string::npos) << h;

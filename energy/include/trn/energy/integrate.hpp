@@ -4,7 +4,9 @@
 // next). Each frame gets its sample count and an error bound
 //     sum over sample intervals of |w[k+1] - w[k]| x covered length + resolution/2 x duration
 // (true power that moves monotonically between two samples, even a step at either end, stays
-// within that; quantisation adds at most half an LSB at every instant). Frames that cannot be measured are flagged, never dropped,
+// within that; quantisation adds at most half an LSB at every instant), plus, when the trace's
+// sample times are uncertain by +-d (PowerTrace::time_uncertainty_s), 2 d x the samples' total
+// variation over [start - d, end + d]. Frames that cannot be measured are flagged, never dropped,
 // and their energy is 0 rather than NaN.
 #include <string>
 #include <vector>

@@ -48,6 +48,14 @@ double parse_rapl_tools_total_energy(std::string_view text, const std::string& n
 PowerTrace parse_perf_stat(std::string_view text, const std::string& name, const ParseOptions& options = {});
 // Records of "Timestamp: <date>" + hwmon "curr1_input: mA" / "in1_input: mV" lines.
 PowerTrace parse_hwmon_records(std::string_view text, const std::string& name, const ParseOptions& options = {});
+// powerstat (vmstat-like table "Time User ... Watts", rows "HH:MM:SS ... W" until the "--------"
+// summary). Options: column (default Watts; pkg-0, dram, ... with -D), date (YYYY-MM-DD: the
+// time of day becomes absolute local time; without it times are seconds since midnight).
+PowerTrace parse_powerstat(std::string_view text, const std::string& name, const ParseOptions& options = {});
+// turbostat (--show Time_Of_Day_Seconds,PkgWatt,... ; --Summary or the per-CPU table, whose
+// summary rows carry '-' as CPU). Options: column (default PkgWatt; CorWatt, RAMWatt, GFXWatt,
+// SysWatt), interval_s (rows without Time_Of_Day_Seconds; default 5 s, turbostat's).
+PowerTrace parse_turbostat(std::string_view text, const std::string& name, const ParseOptions& options = {});
 // trnkit's own log (written by the sysfs sampler and the INA219 simulator's decode):
 // "# trnkit-power v1 kind=instant|interval-mean ..." then t_s,power_w lines.
 PowerTrace parse_trnkit_power(std::string_view text, const std::string& name, const ParseOptions& options = {});

@@ -2,6 +2,7 @@
 // A power trace as every parser and sampler returns it: times in seconds, power in watts, and
 // the hygiene notes (dropped rows, glitches, assumptions) a reader needs to trust the numbers.
 #include <cstddef>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -36,9 +37,18 @@ struct PowerTrace {
     // only the end of an interval of unknown start and that first sample is not integrated).
     std::optional<double> first_interval_start;
     bool wall_clock = false;   // t is UNIX time (CLOCK_REALTIME); otherwise relative seconds
+    // wall_clock stamps written in the logger's local time without a zone, read as if UTC until
+    // a zone is applied (apply_time_zone in time_zone.hpp).
+    bool local_time = false;
     std::vector<double> t;     // seconds, strictly increasing
     std::vector<double> w;     // watts, finite
     double resolution_w = 0;   // quantisation step of a power reading (LSB), 0 when unknown
+    // Each reading's true time lies within t +- this (s): e.g. an INA219 read some time after its
+    // conversion finished. integrate_interval adds its effect to the error bound. 0: exact/unknown.
+    double time_uncertainty_s = 0;
+    // Settings the parser used that came from the log itself (calibration in "# key=value"
+    // comment lines) merged with the options, as KEY=VALUE: the run report's provenance.
+    std::map<std::string, std::string> settings;
     std::vector<std::string> notes;  // hygiene: dropped rows, glitches, gaps, assumed values
     // What a run report must surface as a warning (and the CLI on stderr), not only as a note:
     // readings dropped as physically implausible (see kMinPlausibleW / kMaxPlausibleW).
