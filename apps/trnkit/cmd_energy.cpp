@@ -16,9 +16,10 @@ namespace trn::cli {
 void add_energy_integrate_command(CLI::App* energy);
 void add_energy_compare_command(CLI::App* energy);
 void add_energy_sample_command(CLI::App* energy);
+void add_energy_bench_command(CLI::App* energy);  // cmd_energy_bench.cpp
 
 void add_energy_command(CLI::App& app) {
-    auto* energy = app.add_subcommand("energy", "Power logs -> joules (inspect, integrate-span, integrate, compare, sample)");
+    auto* energy = app.add_subcommand("energy", "Power logs -> joules (inspect, integrate-span, integrate, compare, sample, bench)");
     energy->require_subcommand(1);
     struct Args {
         std::string log, format = "auto";
@@ -62,6 +63,7 @@ void add_energy_command(CLI::App& app) {
     add_energy_integrate_command(energy);
     add_energy_compare_command(energy);
     add_energy_sample_command(energy);
+    add_energy_bench_command(energy);
 }
 
 }  // namespace trn::cli
