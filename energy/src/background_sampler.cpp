@@ -1,5 +1,6 @@
 #include "trn/energy/background_sampler.hpp"
 
+#include <algorithm>
 #include <chrono>
 
 #include "trn/error.hpp"
@@ -13,7 +14,11 @@ BackgroundSampler::BackgroundSampler(PowerSampler& sampler, double period_s, Sam
 }
 
 BackgroundSampler::~BackgroundSampler() {
-    stop_ = true;
+    {
+        std::lock_guard lock(wake_mutex_);
+        stop_ = true;
+    }
+    wake_.notify_all();
     if (thread_.joinable()) thread_.join();
 }
 
@@ -21,11 +26,12 @@ void BackgroundSampler::loop() {
     using clock = std::chrono::steady_clock;
     const auto period = std::chrono::duration_cast<clock::duration>(std::chrono::duration<double>(period_s_));
     auto due = clock::now() + period;
-    while (!stop_) {
-        std::this_thread::sleep_until(due);
-        if (stop_) break;
+    for (;;) {
+        {
+            std::unique_lock lock(wake_mutex_);
+            if (wake_.wait_until(lock, due, [this] { return stop_; })) return;
+        }
         try {
-            std::lock_guard lock(mutex_);
             sampler_.poll(clock_seconds(clock_));
         } catch (...) {
             error_ = std::current_exception();
@@ -42,12 +48,16 @@ void BackgroundSampler::loop() {
 }
 
 PowerTrace BackgroundSampler::stop() {
-    stop_ = true;
+    {
+        std::lock_guard lock(wake_mutex_);
+        stop_ = true;
+    }
+    wake_.notify_all();
     if (thread_.joinable()) thread_.join();
     if (error_) std::rethrow_exception(error_);
-    // One more poll a period later, so the trace covers the caller's last marker with a sample.
-    std::this_thread::sleep_for(std::chrono::duration<double>(period_s_));
-    std::lock_guard lock(mutex_);
+    // One more poll (the thread has ended), so the trace covers the caller's last marker with a
+    // sample; the short wait keeps its time apart from the thread's last poll.
+    std::this_thread::sleep_for(std::chrono::duration<double>(std::min(period_s_, 1e-3)));
     sampler_.poll(clock_seconds(clock_));
     PowerTrace tr = sampler_.trace();
     tr.wall_clock = clock_ == SampleClock::Realtime;

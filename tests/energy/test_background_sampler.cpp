@@ -50,6 +50,20 @@ TEST(BackgroundSampler, PollsOnTheMonotonicClockWhileTheCallerWorks) {
     }
 }
 
+TEST(BackgroundSampler, StopsAtOnceWhateverThePeriod) {
+    FakeHwmon fake;
+    SamplerOptions o;
+    o.sysfs_root = fake.root.string();
+    auto s = make_power_sampler("hwmon:ina226", o);
+    const auto start = std::chrono::steady_clock::now();
+    BackgroundSampler live(*s, 30.0, SampleClock::Monotonic);  // a slow logger: one poll per 30 s
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    const PowerTrace tr = live.stop();
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0) << "stop() waited for the period";
+    ASSERT_EQ(tr.size(), 2u);  // the first poll and the one after the caller's work
+    EXPECT_GE(tr.t[1] - tr.t[0], 0.02);
+}
+
 TEST(BackgroundSampler, ASourceFailingMidRunIsReportedByStop) {
     FakeHwmon fake;
     SamplerOptions o;

@@ -3,6 +3,7 @@
 // the work, so power and frame markers share the process's clock (no alignment step). The first
 // poll happens in the constructor, so a source that cannot be read fails before any work.
 #include <atomic>
+#include <condition_variable>
 #include <exception>
 #include <mutex>
 #include <thread>
@@ -30,9 +31,10 @@ private:
     PowerSampler& sampler_;
     double period_s_;
     SampleClock clock_;
-    std::atomic<bool> stop_{false};
+    bool stop_ = false;                 // guarded by wake_mutex_
+    std::mutex wake_mutex_;
+    std::condition_variable wake_;      // stop() wakes the thread at once, even with a long period
     std::atomic<std::size_t> late_{0};
-    std::mutex mutex_;  // poll() from the thread vs the final poll in stop()
     std::exception_ptr error_;
     std::thread thread_;
 };

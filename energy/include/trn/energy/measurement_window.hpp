@@ -4,7 +4,8 @@
 // the marker format `trnkit frames` writes. Run any power logger beside the program (`trnkit
 // energy sample`, nvidia-smi, tegrastats, PMT, ...) and `trnkit energy integrate LOG --markers
 // FILE` gives per-frame joules. Both clocks are recorded (CLOCK_MONOTONIC and CLOCK_REALTIME);
-// save_minimal() writes the minimal format (frame,start_s,end_s) on one of them.
+// save_minimal() writes the minimal format (frame,start_s,end_s) on one of them. One object is
+// marked from one thread (windows are a sequence, not concurrent).
 //
 //   trn::energy::MeasurementWindows w({{"backend", "mine"}});
 //   w.idle_for(1.0);                        // an idle baseline phase
