@@ -2,6 +2,7 @@
 
 #include <time.h>
 
+#include <algorithm>
 #include <chrono>
 #include <thread>
 
@@ -37,15 +38,23 @@ double clock_seconds(SampleClock clock) {
 PowerTrace sample_for(PowerSampler& sampler, double period_s, double duration_s, SampleClock clock) {
     if (!(period_s > 0) || !(duration_s > 0)) throw Error(sampler.describe() + ": sampling period and duration must be positive");
     // Due times come from steady_clock so a wall-clock step cannot stretch or stop the loop.
-    const auto start = std::chrono::steady_clock::now();
-    for (long k = 0;; ++k) {
-        const auto due = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(k * period_s));
+    // A poll that comes late skips the slots it missed (no bursts of polls microseconds apart,
+    // whose interval means a counter's step would dominate); skips are counted in the notes.
+    using steady = std::chrono::steady_clock;
+    const auto start = steady::now();
+    std::size_t late = 0;
+    for (long k = 0;;) {
+        const auto due = start + std::chrono::duration_cast<steady::duration>(std::chrono::duration<double>(k * period_s));
         if (due - start > std::chrono::duration<double>(duration_s)) break;
         std::this_thread::sleep_until(due);
         sampler.poll(clock_seconds(clock));
+        const long next = static_cast<long>(std::chrono::duration<double>(steady::now() - start).count() / period_s) + 1;
+        if (next > k + 1) ++late;
+        k = std::max(k + 1, next);
     }
     PowerTrace tr = sampler.trace();
     tr.wall_clock = clock == SampleClock::Realtime;
+    if (late) tr.notes.push_back(std::to_string(late) + " poll(s) more than one period late (a loaded machine); the missed ones were skipped");
     return tr;
 }
 
