@@ -58,7 +58,7 @@ TEST(EnergyBenchCli, CpuAndCpuRefWithTheFakeNvmlSampler) {
         // Idle: 10 W plus the sampler thread's own CPU; busy: the frames' CPU share on top (a
         // share of a core only, on a machine loaded by other jobs).
         EXPECT_GT(idle, 9.5);
-        EXPECT_LT(idle, 14);
+        EXPECT_LT(idle, 20);
         EXPECT_GT(busy, idle + 1);
         EXPECT_LT(busy, 10 + 40 * 64);
         EXPECT_NEAR(gross, busy * ms / 1000, 1e-9 + 1e-6 * gross);  // per call: both divided by the 32 calls
