@@ -35,7 +35,8 @@ TEST(EnergyBenchCli, CpuAndCpuRefWithTheFakeNvmlSampler) {
     const fs::path out = temp("trn_bench_cli");
     const bool plots = io::gnuplot_available();
     const std::string cmd = "energy bench --source nvml:0:energy --nvml-lib " + std::string(FAKE_NVML) +
-                            " -b cpu,cpu-ref --kernel sobel --size 480p --repeat 32 -k 6 --idle-ms 30 --lead-idle-ms 300 --period-ms 0.5 --platform fakebox -o " +
+                            " -b cpu,cpu-ref --kernel sobel --size 480p --repeat 32 -k 6 --idle-ms 30 --lead-idle-ms 300 --period-ms 0.5 --min-samples 0"
+                            " --platform fakebox -o " +
                             out.string() + (plots ? "" : " --no-plots");
     const auto r = run_trnkit(cmd);
     ASSERT_EQ(r.code, 0) << cmd << "\n" << r.output;
@@ -50,7 +51,10 @@ TEST(EnergyBenchCli, CpuAndCpuRefWithTheFakeNvmlSampler) {
         EXPECT_EQ(row["platform"], "fakebox");
         EXPECT_EQ(row["frames"], 6);
         EXPECT_EQ(row["calls_per_frame"], 32);
-        EXPECT_GE(row["usable"].get<int>(), 3);  // a sampler thread starved by other jobs may leave a frame short (flagged)
+        // --min-samples 0: on a loaded 2-core machine the sampler thread can miss a whole 3 ms frame
+        // (0..12 samples seen at load 15); the energy counter still puts every joule in some
+        // interval, so the means below hold.
+        EXPECT_EQ(row["usable"], 6);
         const double fps = row["frames_per_s"], ms = row["frame_ms"], gross = row["gross_j"], net = row["net_j"];
         const double idle = row["idle_w"], busy = row["busy_w"], bound = row["bound_j"];
         EXPECT_GT(fps, 0);
@@ -104,11 +108,11 @@ TEST(EnergyBenchCli, ConstantHwmonPowerGivesPowerTimesFrameTime) {
     std::ofstream(sysfs / "class/hwmon/hwmon0/name") << "ina226\n";
     std::ofstream(sysfs / "class/hwmon/hwmon0/power1_input") << "2500000\n";
     const auto r = run_trnkit("energy bench --source hwmon:ina226 --sysfs-root " + sysfs.string() +
-                              " -b cpu-ref --size 480p --repeat 8 -k 4 --idle-ms 20 --lead-idle-ms 100 --period-ms 1 --no-plots -o " + out.string());
+                              " -b cpu-ref --size 480p --repeat 8 -k 4 --idle-ms 20 --lead-idle-ms 100 --period-ms 1 --min-samples 0 --no-plots -o " + out.string());
     ASSERT_EQ(r.code, 0) << r.output;
     const auto row = read_json(out / "bench.json")["rows"][0];
     EXPECT_EQ(row["backend"], "cpu-ref");
-    EXPECT_GE(row["usable"].get<int>(), 3) << row.dump();
+    EXPECT_EQ(row["usable"], 4) << row.dump();  // constant power: exact with any number of samples
     const double ms = row["frame_ms"], gross = row["gross_j"];
     EXPECT_NEAR(gross, 2.5 * ms / 1000, 1e-9 * gross);
     EXPECT_NEAR(row["net_j"].get<double>(), 0, 1e-9);
