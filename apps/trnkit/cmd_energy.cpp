@@ -18,9 +18,10 @@ void add_energy_compare_command(CLI::App* energy);
 void add_energy_sample_command(CLI::App* energy);
 void add_energy_formats_command(CLI::App* energy);
 void add_log_time_zone_options(CLI::App* c, std::vector<std::string>* opts);
+void add_energy_bench_command(CLI::App* energy);  // cmd_energy_bench.cpp
 
 void add_energy_command(CLI::App& app) {
-    auto* energy = app.add_subcommand("energy", "Power logs -> joules (inspect, integrate-span, integrate, compare, sample, formats)");
+    auto* energy = app.add_subcommand("energy", "Power logs -> joules (inspect, integrate-span, integrate, compare, sample, bench, formats)");
     energy->require_subcommand(1);
     struct Args {
         std::string log, format = "auto";
@@ -66,6 +67,7 @@ void add_energy_command(CLI::App& app) {
     add_energy_compare_command(energy);
     add_energy_sample_command(energy);
     add_energy_formats_command(energy);
+    add_energy_bench_command(energy);
 }
 
 }  // namespace trn::cli

@@ -25,12 +25,14 @@ void add_energy_integrate_command(CLI::App* energy) {
         std::size_t min_samples = 3;
     };
     auto a = std::make_shared<Args>();
-    auto* c = energy->add_subcommand("integrate", "Per-frame energy of a power log between the frame markers of `trnkit frames`");
+    auto* c = energy->add_subcommand("integrate", "Per-frame energy of a power log between frame markers (trnkit frames, minimal frame,start_s,end_s, or the log's own)");
     c->add_option("log", a->log, "Power log file")->required();
     c->add_option("--format", a->format, "auto or a format name (see trnkit energy formats)")->capture_default_str();
     c->add_option("--opt", a->opts, "Parser option KEY=VALUE (repeatable)");
     add_log_time_zone_options(c, &a->opts);
-    c->add_option("--markers", a->markers, "Marker file written by trnkit frames")->required();
+    c->add_option("--markers", a->markers,
+                  "Marker file: trnkit frames / energy bench / MeasurementWindows, or minimal 'frame,start_s,end_s' on the log's clock; "
+                  "omit to use the log's own start/end markers (PMT)");
     auto* offset = c->add_option("--offset", a->offset, "Log time = marker time + OFFSET (s); with --align auto: centre of the search")
                        ->check(real_in(-1e12, 1e12));
     c->add_option("--align", a->align, "auto: estimate offset and drift from the busy/idle pattern")->check(CLI::IsMember({"auto"}));

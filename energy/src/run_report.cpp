@@ -90,14 +90,16 @@ RunReport integrate_run(const PowerTrace& trace, const MarkerFile& markers, cons
     r.parse_options = trace.settings;  // calibration read from the log; integrate_files adds the options given
     r.marker_meta = markers.meta;
     r.rule = q.integration.rule == Rule::Hold ? "hold" : "trapezoid";
-    r.clock = q.realtime ? "realtime" : "monotonic";
+    // Minimal-format and log-embedded markers are already on the log's clock (markers.hpp).
+    const bool log_clock = on_log_clock(markers);
+    r.clock = log_clock ? "log" : q.realtime ? "realtime" : "monotonic";
     r.min_samples = q.integration.min_samples;
     ClockMapping mapping;
     mapping.realtime = q.realtime;
     switch (q.align) {
         case AlignMode::SameClock:
             r.align_mode = "same-clock";
-            if (q.realtime && !trace.wall_clock)
+            if (q.realtime && !trace.wall_clock && !log_clock)
                 throw Error(trace.source + ": its times are relative (not UNIX time), so they cannot be matched to CLOCK_REALTIME markers: give an offset or use automatic alignment");
             break;
         case AlignMode::Offset:
@@ -142,12 +144,14 @@ RunReport integrate_run(const PowerTrace& trace, const MarkerFile& markers, cons
 
 RunReport integrate_files(const std::string& log_path, const std::string& format, const ParseOptions& opts, const std::string& markers_path,
                           const IntegrateRequest& q) {
-    const std::string log_text = text::read_file(log_path), marker_text = text::read_file(markers_path, text::kMaxSmallInputBytes);
+    // No marker file: the log's own start/end markers (PMT dumps) are the frames.
+    const std::string log_text = text::read_file(log_path);
+    const std::string marker_text = markers_path.empty() ? std::string() : text::read_file(markers_path, text::kMaxSmallInputBytes);
     const PowerTrace trace = parse_power_log(log_text, log_path, format, opts);
-    const MarkerFile markers = parse_markers(marker_text, markers_path);
+    const MarkerFile markers = markers_path.empty() ? markers_from_trace(trace) : parse_markers(marker_text, markers_path);
     RunReport r = integrate_run(trace, markers, q);
-    r.log_path = log_path, r.markers_path = markers_path;
-    r.log_sha256 = sha256_hex(log_text), r.markers_sha256 = sha256_hex(marker_text);
+    r.log_path = log_path, r.markers_path = markers_path.empty() ? log_path + " (its own start/end markers)" : markers_path;
+    r.log_sha256 = sha256_hex(log_text), r.markers_sha256 = sha256_hex(markers_path.empty() ? log_text : marker_text);
     // Provenance: the options given, and the settings the parser read from the log itself
     // (an INA219 log's calibration comments); an option given overrides the log, as in the parser.
     for (const auto& [k, v] : opts) r.parse_options[k] = v;

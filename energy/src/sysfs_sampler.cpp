@@ -3,13 +3,10 @@
 #include <time.h>
 
 #include <algorithm>
-#include <chrono>
 #include <filesystem>
 #include <fstream>
-#include <thread>
 
 #include "text_input.hpp"
-#include "trn/energy/frame_runner.hpp"
 #include "trn/error.hpp"
 
 namespace trn::energy {
@@ -173,19 +170,16 @@ void SysfsSampler::poll(double t) {
     last_t_ = t;
 }
 
+PowerTrace SysfsSampler::trace() const {
+    PowerTrace tr = trace_;
+    if (wraps_) tr.notes.push_back(std::to_string(wraps_) + " energy counter wrap(s) unwrapped with max_energy_range_uj");
+    return tr;
+}
+
 PowerTrace sample_sysfs(const SysfsSource& source, double period_s, double duration_s) {
     if (!(period_s > 0) || !(duration_s > 0)) throw Error("sample_sysfs: period and duration must be positive");
     SysfsSampler s(source);
-    const auto start = std::chrono::steady_clock::now();
-    for (long k = 0;; ++k) {
-        const auto due = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(k * period_s));
-        if (due - start > std::chrono::duration<double>(duration_s)) break;
-        std::this_thread::sleep_until(due);
-        s.poll(now_both().real_ns * 1e-9);
-    }
-    PowerTrace tr = s.trace();
-    if (s.wraps()) tr.notes.push_back(std::to_string(s.wraps()) + " energy counter wrap(s) unwrapped with max_energy_range_uj");
-    return tr;
+    return sample_for(s, period_s, duration_s, SampleClock::Realtime);
 }
 
 }  // namespace trn::energy

@@ -23,6 +23,11 @@ std::map<std::string, CommandPlan> command_plans(const std::string& fx, const st
     p["energy sample"] = {{{"--sysfs-root", fx + "/sysfs"}, {"--source", "hwmon:ina3221:1"}, {"--duration-s", "0.05"}, {"--period-ms", "10"},
                            {"--out", "power.csv"}},
                           {"--duration-s", "--period-ms"}, {}, 2};
+    p["energy bench"] = {{{"--sysfs-root", fx + "/sysfs"}, {"--source", "hwmon:ina3221:1"}, {"--backend", "cpu"}, {"--size", "480p"}, {"--frames", "2"},
+                          {"--idle-ms", "1"}, {"--lead-idle-ms", "5"}, {"--period-ms", "1"}, {"--min-samples", "0"}, {"--no-plots", ""}, {"--out", "bench"}},
+                         {"--frames", "--repeat", "--idle-ms", "--lead-idle-ms", "--particles", "--size", "--kernel", "--backend"},
+                         {},
+                         2};
     p["simulate"] = {{{"--scenario", "FL-200"}, {"--frames", "2"}, {"--size-m", "400"}, {"--out", "flight"}},
                      {"--frames", "--seconds", "--size-m", "--map-year", "--base-year", "--fov", "--scenario", "--map", "--mpp", "--procedural"},
                      {}, 3};

@@ -27,9 +27,31 @@ struct MarkerFile {
     std::vector<FrameMarker> rows;
 };
 
+// Reads either format: the full one above, or the minimal one below (told apart by the first
+// line that is not a # comment). Throws trn::Error "name:line: why".
 MarkerFile parse_markers(std::string_view text, const std::string& name);
 MarkerFile read_markers(const std::string& path);
 std::string format_markers(const MarkerFile& markers);
+
+// The minimal marker format, for other tools (one clock, one row per frame):
+//   # optional comment lines
+//   frame,start_s,end_s
+//   0,1733935225.009,1733935225.041
+// start_s/end_s are seconds on the power log's own clock (UNIX seconds for wall-clock logs such
+// as `energy sample`, nvidia-smi or PMT; the log's relative seconds otherwise), so `integrate`
+// needs no --clock; --offset and --align still apply. Frame ids are whole numbers, unique; rows
+// are in time order and do not overlap. Parsed into a MarkerFile with meta format=minimal,
+// clock=log and both clocks set to the same nanoseconds.
+inline constexpr std::string_view kMinimalMarkerHeader = "frame,start_s,end_s";
+// Writes the frame rows of `markers` on CLOCK_REALTIME (realtime) or CLOCK_MONOTONIC seconds.
+std::string format_minimal_markers(const MarkerFile& markers, bool realtime = true);
+// True when meta says the times are already on the log's clock (minimal format, log markers).
+bool on_log_clock(const MarkerFile& markers);
+
+// A log's own start/end markers (PMT "M <t> \"start\"" lines) as frames on the log's clock
+// (meta format=log-markers, clock=log); throws trn::Error naming the log when it has none or they
+// do not pair.
+MarkerFile markers_from_trace(const PowerTrace& trace);
 
 // An interval on the power trace's clock.
 struct TimedInterval {

@@ -56,7 +56,8 @@ struct RunReport {
 // The whole step on parsed inputs (paths/hashes are left for the caller to fill in). Throws
 // trn::Error when automatic alignment is ambiguous (Alignment::ambiguous) and not insisted on.
 RunReport integrate_run(const PowerTrace& trace, const MarkerFile& markers, const IntegrateRequest& request);
-// Reads and hashes the files, then integrate_run.
+// Reads and hashes the files, then integrate_run. An empty markers_path takes the frames from the
+// log's own start/end markers (markers_from_trace: PMT dumps).
 RunReport integrate_files(const std::string& log_path, const std::string& format, const ParseOptions& parse_options,
                           const std::string& markers_path, const IntegrateRequest& request);
 

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "trn/energy/power_sampler.hpp"
 #include "trn/energy/trace.hpp"
 
 namespace trn::energy {
@@ -27,13 +28,16 @@ std::vector<SysfsSource> list_sysfs_sources(const std::string& root = "/sys");
 // "hwmon:NAME[:CHANNEL]" or "rapl:NAME" (NAME: the chip/zone name or its folder name).
 SysfsSource find_sysfs_source(const std::string& spec, const std::string& root = "/sys");
 
-class SysfsSampler {
+class SysfsSampler final : public PowerSampler {
 public:
     explicit SysfsSampler(SysfsSource source);
+    std::string describe() const override { return source_.describe(); }
     // Reads the source once at time t_s (seconds, strictly increasing); throws trn::Error naming
     // the file when a read fails or a value is not a number.
-    void poll(double t_s);
-    const PowerTrace& trace() const { return trace_; }
+    void poll(double t_s) override;
+    // wall_clock is true (poll times on CLOCK_REALTIME) unless the caller says otherwise; counter
+    // wraps are noted.
+    PowerTrace trace() const override;
     std::size_t wraps() const { return wraps_; }
 
 private:
@@ -46,7 +50,7 @@ private:
 };
 
 // Polls every period_s for duration_s on CLOCK_REALTIME (UNIX seconds, so markers from
-// `trnkit frames` line up on the same clock).
+// `trnkit frames` line up on the same clock): sample_for() with SampleClock::Realtime.
 PowerTrace sample_sysfs(const SysfsSource& source, double period_s, double duration_s);
 
 }  // namespace trn::energy
