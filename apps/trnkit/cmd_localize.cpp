@@ -95,8 +95,10 @@ void localize(const LocalizeArgs& a) {
     if (!a.start.empty()) std::tie(start_x, start_y) = *parse_pair(a.start);
     if (!a.start_latlon.empty()) {
         if (!in.to_map_pixel)
-            throw Error("--start-latlon: the map has no georeference (neither a GeoTIFF nor a flight.json with a geo origin); give --start X,Y "
-                        "in map pixels instead");
+            throw Error("--start-latlon: " +
+                        (in.has_flight_json ? dataset + "/flight.json has no geo origin and the map is no GeoTIFF"
+                                            : "the map is no GeoTIFF and there is no flight.json with a geo origin") +
+                        "; give --start X,Y in map pixels instead");
         const auto [lat, lon] = *parse_pair(a.start_latlon);
         const auto p = in.to_map_pixel(lat, lon);
         start_x = p[0], start_y = p[1];
