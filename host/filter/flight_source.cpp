@@ -134,9 +134,17 @@ bool AirFlightSource::next(FlightSample& s) {
             } catch (const Error& e) {
                 throw Error(position() + ": " + e.what());
             }
-            const sim::RollPitch rp = sim::roll_pitch_from_quaternion(r.imu);
-            if (s.tilt_deg > kLevelDeg) s.image = warp_to_nadir(s.image.view(), own.hfov_deg, rp.roll_rad, rp.pitch_rad).image;
             ++loaded_;
+            const sim::RollPitch rp = sim::roll_pitch_from_quaternion(r.imu);
+            if (s.tilt_deg > kLevelDeg) {
+                try {
+                    s.image = warp_to_nadir(s.image.view(), own.hfov_deg, rp.roll_rad, rp.pitch_rad).image;
+                } catch (const Error& e) {  // no level view left (a generous --max-tilt-deg): too oblique after all
+                    s.image = {};
+                    s.too_oblique = true;
+                    s.image_error = position() + ": " + e.what();
+                }
+            }
         }
         return true;
     }

@@ -84,8 +84,10 @@ TEST_F(RealAirFolder, FramesOfDifferingSizesAreEachScoredAtTheirOwnScale) {
     EXPECT_GE(good, 4);
 }
 
-// Rows 5 and 9 get a 20-degree roll in ImuX..W (heading kept): beyond the 10-degree default they are
-// skipped, counted in summary.json and marked in the CSV; row 12 at 8 degrees is warped and scored.
+// Rows 5 and 9 get a 20-degree roll in ImuX..W (heading kept), row 14 40 degrees: beyond the
+// 10-degree default they are skipped, counted in summary.json and marked in the CSV; row 12 at 8
+// degrees is warped and scored. 40 degrees leaves no level view (the nadir is outside a 60-degree
+// lens), so it is skipped even under a generous --max-tilt-deg instead of stopping the run.
 TEST_F(RealAirFolder, FramesTooObliqueAreSkippedAndCounted) {
     std::ifstream in(dir_ + "/metadata.csv");
     std::string header, line, text;
@@ -101,7 +103,7 @@ TEST_F(RealAirFolder, FramesTooObliqueAreSkippedAndCounted) {
         std::vector<std::string> cells;
         std::stringstream l(line);
         for (std::string c; std::getline(l, c, ',');) cells.push_back(c);
-        const double roll_deg = row == 5 || row == 9 ? 20 : row == 12 ? 8 : 0;
+        const double roll_deg = row == 5 || row == 9 ? 20 : row == 12 ? 8 : row == 14 ? 40 : 0;
         if (roll_deg > 0) {
             const trn::sim::Quaternion q{std::stod(cells[col("ImuX")]), std::stod(cells[col("ImuY")]), std::stod(cells[col("ImuZ")]),
                                          std::stod(cells[col("ImuW")])};
@@ -117,21 +119,25 @@ TEST_F(RealAirFolder, FramesTooObliqueAreSkippedAndCounted) {
 
     const auto r = localize("--map " + map(), 1, dir_ + "/tilt");
     ASSERT_EQ(r.code, 0) << r.output;
-    EXPECT_NE(r.output.find("2 of 16 frames are tilted more than 10 deg from nadir (ImuX..W) and will be skipped"), std::string::npos)
+    EXPECT_NE(r.output.find("3 of 16 frames are tilted more than 10 deg from nadir (ImuX..W) and will be skipped"), std::string::npos)
         << r.output;
-    EXPECT_NE(r.output.find("skipped:      2 frames too oblique to score"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("skipped:      3 frames too oblique to score"), std::string::npos) << r.output;
     const auto j = summary(dir_ + "/tilt");
-    EXPECT_EQ(j["frames_too_oblique"], 2);
+    EXPECT_EQ(j["frames_too_oblique"], 3);
     EXPECT_EQ(j["frames_missing"], 0);
     const auto rows = csv(dir_ + "/tilt/localization.csv");
     ASSERT_EQ(rows.size(), 16u);
     for (std::size_t k = 0; k < rows.size(); ++k) {
-        EXPECT_EQ(rows[k].at("too_oblique"), k == 5 || k == 9 ? "1" : "0") << "row " << k;
+        EXPECT_EQ(rows[k].at("too_oblique"), k == 5 || k == 9 || k == 14 ? "1" : "0") << "row " << k;
         EXPECT_EQ(rows[k].at("frame_missing"), "0") << "row " << k;
-        EXPECT_NEAR(std::stod(rows[k].at("tilt_deg")), k == 5 || k == 9 ? 20 : k == 12 ? 8 : 0, 1e-3) << "row " << k;
+        EXPECT_NEAR(std::stod(rows[k].at("tilt_deg")), k == 5 || k == 9 ? 20 : k == 12 ? 8 : k == 14 ? 40 : 0, 1e-3) << "row " << k;
     }
     // A stricter limit skips the 8-degree row as well.
     const auto strict = localize("--map " + map() + " --max-tilt-deg 5", 1, dir_ + "/strict");
     ASSERT_EQ(strict.code, 0) << strict.output;
-    EXPECT_EQ(summary(dir_ + "/strict")["frames_too_oblique"], 3);
+    EXPECT_EQ(summary(dir_ + "/strict")["frames_too_oblique"], 4);
+    const auto generous = localize("--map " + map() + " --max-tilt-deg 60", 1, dir_ + "/generous");
+    ASSERT_EQ(generous.code, 0) << generous.output;
+    EXPECT_EQ(summary(dir_ + "/generous")["frames_too_oblique"], 1);  // row 14: no level view left
+    EXPECT_EQ(csv(dir_ + "/generous/localization.csv")[14].at("too_oblique"), "1");
 }
