@@ -85,7 +85,7 @@ GeoTiff read_geotiff(const std::string& path) {
 
     const OGRSpatialReference* srs = ds->GetSpatialRef();
     if (!srs || srs->IsEmpty())
-        throw Error(path + ": no coordinate reference system (CRS); cannot tell metres or latitude/longitude (assign one, e.g. "
+        throw Error(path + ": no coordinate reference system, CRS: cannot tell metres or latitude/longitude (assign one, e.g. "
                            "gdal_edit.py -a_srs EPSG:32632)");
     if (!srs->IsProjected())
         throw Error(path + ": CRS '" + std::string(srs->GetName() ? srs->GetName() : "?") +
