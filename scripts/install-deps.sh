@@ -9,6 +9,8 @@ packages=(
   # libraries
   libopencv-dev libeigen3-dev libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev nlohmann-json3-dev libboost-dev
+  # GeoTIFF orthophotos (optional at build time; trnkit localize --map map.tif)
+  libgdal-dev
   # OpenCL: headers, ICD loader, PoCL (CPU device)
   opencl-headers ocl-icd-opencl-dev pocl-opencl-icd clinfo
   # Vulkan: loader, lavapipe (CPU device), GLSL -> SPIR-V compiler, validation layer

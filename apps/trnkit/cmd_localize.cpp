@@ -10,12 +10,14 @@
 
 #include "commands.hpp"
 #include "filter_model_options.hpp"
+#include "localize_inputs.hpp"
 #include "options.hpp"
 #include "progress.hpp"
 #include "trn/error.hpp"
 #include "trn/filter/backend_choice.hpp"
 #include "trn/filter/flight_source.hpp"
 #include "trn/filter/localization.hpp"
+#include "trn/filter/nadir_warp.hpp"
 #include "trn/filter/report.hpp"
 #include "trn/io/output_folder.hpp"
 #include "trn/registry.hpp"
@@ -26,9 +28,11 @@ namespace trn::cli {
 namespace {
 
 struct LocalizeArgs {
-    std::string dataset, map, backend = "fastest", conversion = "logistic:0.2", sampling = "kld", out;
+    LocalizeInputOptions inputs;  // dataset, map, resolution, camera, fps
+    std::string backend = "fastest", conversion = "logistic:0.2", sampling = "kld", out;
     std::uint64_t seed = 1;
-    double mpp = 0, rate_hz = 5, sparse = 1;
+    double rate_hz = 5, sparse = 1;
+    double max_tilt_deg = filter::kDefaultMaxTiltDeg;
     std::size_t particles = 1000, min_particles = 100, max_particles = 2000;
     int template_width = 160;
     // Start prior. 50 m, not the dissertation's 300 m: localize hands over from a GNSS fix that was
@@ -66,14 +70,6 @@ CLI::Validator pair_in(double lo1, double hi1, double lo2, double hi2, const std
         what);
 }
 
-// Map pixel of a latitude / longitude: the inverse of sim::map_pixel_to_latlon's projection.
-std::pair<double, double> latlon_to_map_pixel(const sim::GeoOrigin& o, double mpp, double lat, double lon) {
-    constexpr double kEarthRadius = 6378137.0, kDeg = 180.0 / 3.14159265358979323846;
-    const double south = (o.latitude_deg - lat) / kDeg * kEarthRadius;
-    const double east = (lon - o.longitude_deg) / kDeg * kEarthRadius * std::cos(o.latitude_deg / kDeg);
-    return {east / mpp, south / mpp};
-}
-
 // Options left at "not given" (NaN) are left out of summary.json rather than written as null.
 std::map<std::string, double> without_unset(std::map<std::string, double> numbers) {
     std::erase_if(numbers, [](const auto& kv) { return std::isnan(kv.second); });
@@ -83,26 +79,28 @@ std::map<std::string, double> without_unset(std::map<std::string, double> number
 void progress_bar(std::size_t done, std::size_t total) { draw_progress(done, total, "steps"); }
 
 void localize(const LocalizeArgs& a) {
-    namespace fs = std::filesystem;
-    if (!fs::is_directory(a.dataset)) throw Error("--dataset " + a.dataset + ": not a folder");
     if (a.min_particles > a.max_particles)
         throw Error("--min-particles " + std::to_string(a.min_particles) + " exceeds --max-particles " + std::to_string(a.max_particles));
-    const std::string info_path = a.dataset + "/flight.json";
-    if (!fs::exists(info_path)) throw Error(info_path + ": missing (it names the camera and map resolution)");
-    const std::string out = a.out.empty() ? a.dataset + "/localize" : a.out;
-    io::check_output_folder(out, "localize", a.force);  // before the run, not after it
-    const sim::FlightInfo info = sim::read_flight_info(info_path);
-    const std::string map_path = !a.map.empty() ? a.map : info.map_file.empty() ? "" : a.dataset + "/" + info.map_file;
-    if (map_path.empty()) throw Error("--map: flight.json names no map; give --map FILE");
-    const double mpp = a.mpp > 0 ? a.mpp : info.metres_per_pixel;
-    const sim::Map map = sim::load_map(map_path, mpp);
     if (!a.start.empty() && !a.start_latlon.empty()) throw Error("--start and --start-latlon: give one of them, not both");
+    const LocalizeInputs in = resolve_localize_inputs(a.inputs);
+    const std::string out = a.out.empty() ? a.inputs.dataset + "/localize" : a.out;
+    io::check_output_folder(out, "localize", a.force);  // before the run, not after it
+    for (const std::string& n : in.notes) std::cerr << "trnkit: note: " << n << "\n";
+    const sim::Map& map = in.map;
+    const std::string& map_path = in.map_path;
+    const std::string& dataset = a.inputs.dataset;
+    const double mpp = map.metres_per_pixel;
     double start_x = NAN, start_y = NAN;  // NaN: the first row's MapX/MapY
     if (!a.start.empty()) std::tie(start_x, start_y) = *parse_pair(a.start);
     if (!a.start_latlon.empty()) {
-        if (!info.origin) throw Error("--start-latlon: " + info_path + " has no geo origin; give --start X,Y in map pixels instead");
+        if (!in.to_map_pixel)
+            throw Error("--start-latlon: " +
+                        (in.has_flight_json ? dataset + "/flight.json has no geo origin and the map is no GeoTIFF"
+                                            : "the map is no GeoTIFF and there is no flight.json with a geo origin") +
+                        "; give --start X,Y in map pixels instead");
         const auto [lat, lon] = *parse_pair(a.start_latlon);
-        std::tie(start_x, start_y) = latlon_to_map_pixel(*info.origin, mpp, lat, lon);
+        const auto p = in.to_map_pixel(lat, lon);
+        start_x = p[0], start_y = p[1];
     }
     if (std::isfinite(start_x) && !(start_x >= 0 && start_x < map.image.width && start_y >= 0 && start_y < map.image.height))
         throw Error((a.start.empty() ? "--start-latlon " + a.start_latlon : "--start " + a.start) + ": map pixel " + std::to_string(start_x) +
@@ -135,27 +133,36 @@ void localize(const LocalizeArgs& a) {
     filter::ParticleFilter pf(scorer, cfg);
 
     if (!(a.rate_hz > 0)) throw Error("--rate must be > 0");
-    const std::size_t stride = std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(info.fps / a.rate_hz)));
-    const std::size_t rows = filter::count_air_rows(a.dataset);
-    filter::AirFlightSource source(a.dataset, info.camera, mpp, info.fps, stride, (rows + stride - 1) / stride,
-                                   {map.image.width, map.image.height});
+    // Without a frame rate (no flight.json, no --fps) every row is a filter step at --rate.
+    const double fps = in.fps > 0 ? in.fps : a.rate_hz;
+    const std::size_t stride = std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(fps / a.rate_hz)));
+    const std::size_t rows = filter::count_air_rows(dataset);
+    filter::AirFlightSource source(dataset, in.camera, mpp, fps, stride, (rows + stride - 1) / stride,
+                                   {map.image.width, map.image.height}, a.max_tilt_deg);
     if (std::isnan(start_x)) {  // the start defaults to the first row's truth: refuse before the run when it has none
-        sim::AirReader first(a.dataset);
+        sim::AirReader first(dataset);
         sim::AirRecord r;
         if (first.next(r) && !std::isfinite(r.map_x))
-            throw Error("--start: required: " + a.dataset + "/metadata.csv has no ground truth (empty MapX,MapY) in its first row; "
+            throw Error("--start: required: " + dataset + "/metadata.csv has no ground truth (empty MapX,MapY) in its first row; "
                         "give --start X,Y or --start-latlon LAT,LON");
     }
     for (const std::string& w : source.warnings()) std::cerr << "trnkit: warning: " << w << "\n";
-    std::cerr << "localizing " << a.dataset << " (" << rows << " frames, every " << stride << ") on " << backend->info().name << ", "
+    std::cerr << "localizing " << dataset << " (" << rows << " frames, every " << stride << ") on " << backend->info().name << ", "
               << cfg.conversion.to_string() << ", " << filter::to_string(cfg.sampling) << " sampling, seed " << a.seed << "\n";
     filter::LocalizationResult result;
     try {
         result = filter::run_localization(source, pf, progress_bar, start_x, start_y, a.start_heading_deg * 3.14159265358979323846 / 180);
     } catch (const Error& e) {
-        if (std::string(e.what()).rfind(a.dataset, 0) == 0) throw;  // the flight source's own errors name their place
+        if (std::string(e.what()).rfind(dataset, 0) == 0) throw;  // the flight source's own errors name their place
         throw Error(source.position() + ": " + e.what());           // which row of the flight the library choked on
     }
+
+    if (in.to_latlon)  // the estimates also as latitude / longitude
+        for (filter::LocalizationRow& r : result.rows) {
+            const sim::LatLon ll = in.to_latlon(r.estimate_x, r.estimate_y);
+            r.estimate_lat = ll.latitude_deg, r.estimate_lon = ll.longitude_deg;
+        }
+    const bool has_latlon = in.to_latlon && !result.rows.empty();
 
     // The start actually used, for the record (the first row's truth when not given).
     const double used_start_x = std::isfinite(start_x) || result.rows.empty() ? start_x : result.rows.front().truth_x;
@@ -165,21 +172,31 @@ void localize(const LocalizeArgs& a) {
     filter::write_summary_json(out + "/summary.json", result.summary,
                                {{"backend", backend->info().name}, {"device", backend->info().device},
                                 {"backend_requested", a.backend}, {"conversion", cfg.conversion.to_string()},
-                                {"sampling", filter::to_string(cfg.sampling)}, {"dataset", a.dataset}, {"map", map_path},
+                                {"sampling", filter::to_string(cfg.sampling)}, {"dataset", dataset}, {"map", map_path},
                                 {"start", a.start.empty() && a.start_latlon.empty() ? "first row's MapX,MapY" : !a.start.empty() ? "--start " + a.start : "--start-latlon " + a.start_latlon},
                                 {"start_heading", std::isnan(a.start_heading_deg) ? "first magnetometer reading" : "--start-heading-deg"},
-                                {"scoring_density", a.sparse < 1 ? "random " + std::to_string(a.sparse) : "dense"}},
-                               without_unset(filter::with_lock_numbers(result.summary, {{"seed", static_cast<double>(a.seed)}, {"filter_rate_hz", info.fps / stride},
+                                {"scoring_density", a.sparse < 1 ? "random " + std::to_string(a.sparse) : "dense"},
+                                {"flight_json", in.has_flight_json ? "used" : "absent (camera, map and resolution from options)"},
+                                {"georeference", in.georeference.empty() ? "none" : in.georeference}},
+                               without_unset(filter::with_lock_numbers(result.summary, {{"seed", static_cast<double>(a.seed)}, {"filter_rate_hz", fps / stride},
                                 {"init_radius_m", cfg.init_radius_m}, {"reinit_radius_m", cfg.reinit_radius_m},
                                 {"start_x", used_start_x}, {"start_y", used_start_y}, {"particles", static_cast<double>(a.particles)},
                                 {"min_particles", static_cast<double>(a.min_particles)}, {"max_particles", static_cast<double>(a.max_particles)},
                                 {"rate_hz", a.rate_hz}, {"sparse", a.sparse}, {"metres_per_pixel", mpp},
                                 {"start_heading_deg", a.start_heading_deg}, {"heading_sd_deg", cfg.init_heading_sd_deg},
-                                {"template_width", static_cast<double>(a.template_width)}})));
+                                {"template_width", static_cast<double>(a.template_width)}, {"camera_hfov_deg", in.camera.hfov_deg},
+                                {"max_tilt_deg", a.max_tilt_deg},
+                                {"final_estimate_lat", has_latlon ? result.rows.back().estimate_lat : NAN},
+                                {"final_estimate_lon", has_latlon ? result.rows.back().estimate_lon : NAN}})));
     std::cout << filter::format_summary(result.summary) << filter::format_lock_summary(result.summary);
+    if (has_latlon) {
+        char ll[96];
+        std::snprintf(ll, sizeof ll, "lat %.7f lon %.7f", result.rows.back().estimate_lat, result.rows.back().estimate_lon);
+        std::cout << "final estimate: " << ll << " (" << in.georeference << ")\n";
+    }
     std::cout << "per-step CSV: " << out << "/localization.csv\nsummary JSON: " << out << "/summary.json\n";
     if (!a.no_plots) {
-        const filter::PlotFiles plots = filter::plot_run(out, result.rows, result.summary, map.image.view(), mpp, info.scenario);
+        const filter::PlotFiles plots = filter::plot_run(out, result.rows, result.summary, map.image.view(), mpp, in.scenario);
         std::cout << "plots: " << plots.trajectory_png << (plots.error_png.empty() ? "" : " " + plots.error_png) << "\n";
     }
 }
@@ -189,9 +206,23 @@ void localize(const LocalizeArgs& a) {
 void add_localize_command(CLI::App& app) {
     auto a = std::make_shared<LocalizeArgs>();
     auto* cmd = app.add_subcommand("localize", "Localize an AIR flight folder on its map with the DPC-PFL particle filter");
-    cmd->add_option("--dataset", a->dataset, "AIR flight folder (metadata.csv, frames, flight.json)")->required();
-    cmd->add_option("--map", a->map, "Localization map image (default: the one flight.json names)");
-    cmd->add_option("--mpp", a->mpp, "Map resolution, metres per pixel (default: flight.json)")->check(real_in(0, 1000, Open::low));
+    cmd->add_option("--dataset", a->inputs.dataset, "AIR flight folder (metadata.csv, frames; flight.json optional)")->required();
+    cmd->add_option("--map", a->inputs.map,
+                    "Localization map image (default: the one flight.json names); a .tif/.tiff is read as a GeoTIFF (GDAL): "
+                    "resolution and latitude/longitude from its georeference");
+    cmd->add_option("--mpp", a->inputs.mpp, "Map resolution, metres per pixel (default: flight.json or the GeoTIFF)")->check(real_in(0, 1000, Open::low));
+    cmd->add_option("--hfov-deg", a->inputs.hfov_deg, "Camera horizontal field of view, degrees (default: flight.json)")
+        ->check(real_in(1, 170, Open::both));
+    cmd->add_option("--focal-px", a->inputs.focal_px, "Camera focal length in pixels of frames --focal-width px wide (instead of --hfov-deg)")
+        ->check(real_in(0, 1e6, Open::low));
+    cmd->add_option("--focal-width", a->inputs.focal_width, "Frame width (px) that --focal-px refers to")->transform(whole_in(2, 16384));
+    cmd->add_option("--fps", a->inputs.fps, "Camera frame rate (default: flight.json; without it every row is a filter step)")
+        ->check(real_in(0, 1000, Open::low));
+    cmd->add_option("--max-tilt-deg", a->max_tilt_deg,
+                    "Frames whose measured roll/pitch (ImuX..W) tilt the camera further from nadir are skipped and counted; "
+                    "smaller tilts are warped to nadir (10: there the level crop keeps over half the frame width; at 15 only a third)")
+        ->capture_default_str()
+        ->check(real_in(0, 89));
     cmd->add_option("--backend", a->backend, "Scoring backend (cpu, opencl:0, vulkan, ... or 'fastest': the first usable of GPU OpenCL, GPU Vulkan, cpu, other devices, always the same on one machine)")->capture_default_str();
     cmd->add_option("--conversion", a->conversion, "linear, softmax, rectifying:D or logistic:V")->capture_default_str();
     cmd->add_option("--sampling", a->sampling, "kld, importance or rejection")->capture_default_str();

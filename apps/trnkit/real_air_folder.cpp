@@ -2,8 +2,6 @@
 
 #include <cmath>
 
-#include <opencv2/imgproc.hpp>
-
 #include "trn/error.hpp"
 #include "trn/sim/air_format.hpp"
 #include "trn/sim/camera.hpp"
@@ -26,6 +24,11 @@ void write_real_air_folder(const std::string& folder, const std::vector<PoseRow>
         const Pose& p = rows[k].pose;
         if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.yaw) && p.scale > 0) || frames[k].width < 2)
             throw Error("AIR folder " + folder + ": " + rows[k].frame + ": pose or frame unusable");
+        try {
+            sim::Camera{frames[k].width, frames[k].height, o.hfov_deg}.validate();  // each frame is its own camera size
+        } catch (const Error& e) {
+            throw Error("AIR folder " + folder + ": " + rows[k].frame + ": " + e.what());
+        }
     }
 
     sim::OdometrySimulator odometry(o.odometry);
@@ -34,15 +37,12 @@ void write_real_air_folder(const std::string& folder, const std::vector<PoseRow>
     const double dt = 1 / o.fps, mpp = o.metres_per_pixel;
     for (std::size_t k = 0; k < rows.size(); ++k) {
         const Pose& p = rows[k].pose;
-        // The frame at the camera's size: one resized pixel covers width_k / width_0 original ones.
-        cv::Mat resized;
-        cv::resize(cv::Mat(frames[k].height, frames[k].width, CV_8UC1, const_cast<std::uint8_t*>(frames[k].pixels.data())), resized,
-                   cv::Size(info.camera.width, info.camera.height), 0, 0, cv::INTER_AREA);
-        const double scale = p.scale * static_cast<double>(frames[k].width) / info.camera.width;
+        // The altitude that gives this frame's found scale with its own focal length in pixels.
+        const sim::Camera own{frames[k].width, frames[k].height, o.hfov_deg};
 
         sim::AirRecord r;
         r.filename = rows[k].frame;
-        r.relative_altitude_m = scale * info.camera.focal_px() * mpp;  // inverse of sim::template_scale
+        r.relative_altitude_m = p.scale * own.focal_px() * mpp;  // inverse of sim::template_scale
         r.pose_m = {(p.x - rows[0].pose.x) * mpp, -(p.y - rows[0].pose.y) * mpp, 0};  // east, north (map y is south)
         r.orientation = sim::attitude_quaternion(p.yaw);
         r.imu = sim::attitude_quaternion(magnetometer.read(p.yaw));
@@ -54,7 +54,7 @@ void write_real_air_folder(const std::string& folder, const std::vector<PoseRow>
             odometry.step(delta, dt, sim::wrap_angle(p.yaw - q.yaw) / dt);
         }
         r.svo_m = odometry.estimate();
-        writer.write(r, GrayView{resized.data, resized.cols, resized.rows, static_cast<std::ptrdiff_t>(resized.step)});
+        writer.write(r, frames[k].view());
     }
     writer.close();
     sim::write_flight_info(folder + "/flight.json", info);

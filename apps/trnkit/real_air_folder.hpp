@@ -18,8 +18,9 @@ struct RealAirOptions {
     sim::MagnetometerConfig magnetometer;
 };
 
-// frames[k] belongs to rows[k]. Every frame is resized to the first frame's size (the AIR camera
-// has one size) and its scale adjusted to match. Validates everything before writing anything.
+// frames[k] belongs to rows[k]. Frames are written as they are, each at its own size: the
+// localizer scales every frame by its own width (flight.json's camera is the first frame's size).
+// Validates everything before writing anything.
 void write_real_air_folder(const std::string& folder, const std::vector<PoseRow>& rows, const std::vector<GrayImage>& frames,
                            const RealAirOptions& options);
 

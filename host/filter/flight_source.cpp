@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "trn/error.hpp"
+#include "trn/filter/nadir_warp.hpp"
 #include "trn/sim/render.hpp"
 
 namespace trn::filter {
@@ -13,6 +14,15 @@ namespace trn::filter {
 namespace {
 
 constexpr double kMaxAltitudeM = 20000;  // above any UAV; beyond it RelativeAltitude is a broken file
+// Below this the frame is taken as level and left as it is (a quaternion written for roll = pitch = 0
+// reads back as ~1e-14 deg).
+constexpr double kLevelDeg = 1e-6;
+
+// Tilt of the optical axis from the vertical by the measured attitude (ImuX..W), degrees.
+double tilt_deg(const sim::AirRecord& r) {
+    const sim::RollPitch rp = sim::roll_pitch_from_quaternion(r.imu);
+    return sim::tilt_from_nadir(rp.roll_rad, rp.pitch_rad) * 180 / 3.14159265358979323846;
+}
 
 std::string place(const sim::AirReader& r, const std::string& filename) {
     return r.folder() + "/metadata.csv:" + std::to_string(r.line()) + " (" + filename + ")";
@@ -27,9 +37,10 @@ std::string number(double v) {
 }  // namespace
 
 AirFlightSource::AirFlightSource(const std::string& folder, const sim::Camera& camera, double metres_per_pixel,
-                                 double fps, std::size_t stride, std::size_t frames_hint, MapExtent map)
-    : reader_(folder), camera_(camera), mpp_(metres_per_pixel), fps_(fps), stride_(stride), hint_(frames_hint) {
+                                 double fps, std::size_t stride, std::size_t frames_hint, MapExtent map, double max_tilt_deg)
+    : reader_(folder), camera_(camera), mpp_(metres_per_pixel), fps_(fps), max_tilt_deg_(max_tilt_deg), stride_(stride), hint_(frames_hint) {
     if (!(fps > 0)) throw Error("AirFlightSource: fps must be > 0");
+    if (!(max_tilt_deg >= 0 && max_tilt_deg < 90)) throw Error("AirFlightSource: max_tilt_deg must be in [0, 90)");
     if (stride == 0) throw Error("AirFlightSource: stride must be >= 1");
     if (!(metres_per_pixel > 0)) throw Error("AirFlightSource: metres_per_pixel must be > 0");
     camera.validate();
@@ -41,8 +52,8 @@ AirFlightSource::AirFlightSource(const std::string& folder, const sim::Camera& c
 void AirFlightSource::check_rows(MapExtent map) {
     sim::AirReader rows(reader_.folder());
     sim::AirRecord r;
-    std::size_t count = 0, used = 0, missing = 0, odometry_off = 0;
-    std::string first_missing, first_odometry_off;
+    std::size_t count = 0, used = 0, missing = 0, odometry_off = 0, oblique = 0;
+    std::string first_missing, first_odometry_off, first_oblique;
     double start_x = 0, start_y = 0, svo_e0 = 0, svo_n0 = 0;
     while (rows.next(r)) {
         const std::string at = place(rows, r.filename) + ": ";
@@ -63,6 +74,7 @@ void AirFlightSource::check_rows(MapExtent map) {
             if (odometry_off++ == 0) first_odometry_off = place(rows, r.filename);
         if (count++ % stride_ == 0) {
             ++used;
+            if (tilt_deg(r) > max_tilt_deg_ && oblique++ == 0) first_oblique = place(rows, r.filename) + ", tilt " + number(tilt_deg(r)) + " deg";
             std::error_code ec;
             if (!std::filesystem::is_regular_file(rows.image_path(r), ec))
                 if (missing++ == 0) first_missing = place(rows, r.filename);
@@ -74,6 +86,9 @@ void AirFlightSource::check_rows(MapExtent map) {
     if (missing)
         warnings_.push_back(reader_.folder() + ": " + std::to_string(missing) + " of " + std::to_string(used) +
                             " frames are missing and will be skipped (first: " + first_missing + ")");
+    if (oblique)
+        warnings_.push_back(reader_.folder() + ": " + std::to_string(oblique) + " of " + std::to_string(used) + " frames are tilted more than " +
+                            number(max_tilt_deg_) + " deg from nadir (ImuX..W) and will be skipped (first: " + first_oblique + ")");
     if (odometry_off)
         warnings_.push_back(reader_.folder() + ": the odometry leaves the map on " + std::to_string(odometry_off) + " of " +
                             std::to_string(count) + " rows (first: " + first_odometry_off + ")");
@@ -98,6 +113,12 @@ bool AirFlightSource::next(FlightSample& s) {
         s.map_px_per_camera_px = sim::template_scale(camera_, r.relative_altitude_m, mpp_);
         s.image = {};
         s.image_error.clear();
+        s.tilt_deg = tilt_deg(r);
+        s.too_oblique = s.tilt_deg > max_tilt_deg_;
+        if (s.too_oblique) {  // never scored at a wrong place and scale; counted by the caller
+            s.image_error = position() + ": tilted " + number(s.tilt_deg) + " deg from nadir, more than " + number(max_tilt_deg_);
+            return true;
+        }
         ++attempted_;
         try {
             s.image = reader_.load_image(r);
@@ -106,12 +127,24 @@ bool AirFlightSource::next(FlightSample& s) {
             if (first_load_error_.empty()) first_load_error_ = e.what();
         }
         if (!s.image.pixels.empty()) {
-            // No per-frame scale handling exists: the scale above assumes the camera's pixels.
-            if (s.image.width != camera_.width || s.image.height != camera_.height)
-                throw Error(position() + ": the frame is " + std::to_string(s.image.width) + "x" + std::to_string(s.image.height) +
-                            " but flight.json's camera is " + std::to_string(camera_.width) + "x" + std::to_string(camera_.height) +
-                            "; it would be scored at the wrong scale");
+            // The scale of this frame's own pixels: the focal length in pixels grows with the width.
+            const sim::Camera own{s.image.width, s.image.height, camera_.hfov_deg};
+            try {
+                s.map_px_per_camera_px = sim::template_scale(own, r.relative_altitude_m, mpp_);
+            } catch (const Error& e) {
+                throw Error(position() + ": " + e.what());
+            }
             ++loaded_;
+            const sim::RollPitch rp = sim::roll_pitch_from_quaternion(r.imu);
+            if (s.tilt_deg > kLevelDeg) {
+                try {
+                    s.image = warp_to_nadir(s.image.view(), own.hfov_deg, rp.roll_rad, rp.pitch_rad).image;
+                } catch (const Error& e) {  // no level view left (a generous --max-tilt-deg): too oblique after all
+                    s.image = {};
+                    s.too_oblique = true;
+                    s.image_error = position() + ": " + e.what();
+                }
+            }
         }
         return true;
     }

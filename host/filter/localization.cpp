@@ -40,10 +40,13 @@ LocalizationSummary summarise(const std::vector<LocalizationRow>& rows, const Fi
     s.steps = rows.size();
     s.counters = counters;
     if (rows.empty()) return s;
+    // The filter sees a too-oblique frame as an empty one; missing means failed to load.
+    for (const LocalizationRow& r : rows) s.counters.frames_missing -= r.too_oblique && s.counters.frames_missing > 0;
     std::vector<double> km, fe, oe;
     double particles = 0, score = 0;
     for (const LocalizationRow& r : rows) {
         particles += r.particles, score += r.score_ms;
+        s.frames_too_oblique += r.too_oblique;
         if (std::isfinite(r.error_m) && std::isfinite(r.odometry_error_m)) {
             km.push_back(r.distance_m / 1000), fe.push_back(r.error_m), oe.push_back(r.odometry_error_m);
         }
@@ -120,7 +123,8 @@ LocalizationResult run_localization(FlightSource& source, ParticleFilter& filter
         }
         row.particles = rep.particles, row.off_map = rep.off_map;
         row.score_ms = rep.score_ms, row.step_ms = step_s * 1000;
-        row.odometry_lost = rep.odometry_lost, row.frame_missing = rep.frame_missing, row.reinitialised = rep.reinitialised;
+        row.odometry_lost = rep.odometry_lost, row.frame_missing = rep.frame_missing && !s.too_oblique, row.reinitialised = rep.reinitialised;
+        row.tilt_deg = s.tilt_deg, row.too_oblique = s.too_oblique;
         row.lock_contrast = rep.lock.contrast, row.lock_drift_m = rep.lock.drift_m, row.lock_lost = rep.lock.lost;
         result.rows.push_back(row);
         if (progress) progress(result.rows.size(), hint);

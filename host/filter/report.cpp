@@ -24,6 +24,16 @@ std::ostream& operator<<(std::ostream& os, Cell c) {
     if (std::isfinite(c.v)) os << c.v;
     return os;
 }
+// Degrees to 1e-9 (millimetres), empty when the map has no georeference.
+struct LatLonCell {
+    double v;
+};
+std::ostream& operator<<(std::ostream& os, LatLonCell c) {
+    if (!std::isfinite(c.v)) return os;
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.9f", c.v);
+    return os << buf;
+}
 bool has_errors(const LocalizationSummary& s) { return std::isfinite(s.filter_mean_error_m); }
 }  // namespace
 
@@ -32,12 +42,14 @@ void write_rows_csv(const std::string& path, const std::vector<LocalizationRow>&
     std::ostream& out = file.stream();
     out.precision(10);
     out << "frame,time_s,distance_m,truth_x,truth_y,odometry_x,odometry_y,estimate_x,estimate_y,estimate_yaw,best_x,best_y,"
-           "error_m,odometry_error_m,particles,off_map,score_ms,step_ms,odometry_lost,frame_missing,reinitialised\n";
+           "error_m,odometry_error_m,particles,off_map,score_ms,step_ms,odometry_lost,frame_missing,reinitialised,tilt_deg,too_oblique,"
+           "est_lat,est_lon\n";
     for (const LocalizationRow& r : rows)
         out << r.frame << ',' << r.time_s << ',' << r.distance_m << ',' << Cell{r.truth_x} << ',' << Cell{r.truth_y} << ',' << r.odometry_x << ','
             << r.odometry_y << ',' << r.estimate_x << ',' << r.estimate_y << ',' << r.estimate_yaw << ',' << r.best_x << ',' << r.best_y
             << ',' << Cell{r.error_m} << ',' << Cell{r.odometry_error_m} << ',' << r.particles << ',' << r.off_map << ',' << r.score_ms << ','
-            << r.step_ms << ',' << r.odometry_lost << ',' << r.frame_missing << ',' << r.reinitialised << '\n';
+            << r.step_ms << ',' << r.odometry_lost << ',' << r.frame_missing << ',' << r.reinitialised << ',' << r.tilt_deg << ','
+            << r.too_oblique << ',' << LatLonCell{r.estimate_lat} << ',' << LatLonCell{r.estimate_lon} << '\n';
     file.commit();
 }
 
@@ -63,6 +75,7 @@ void write_summary_json(const std::string& path, const LocalizationSummary& s, c
     if (has_errors(s)) j["distance_m"] = num(s.distance_m);  // flown along the ground truth: unknown without it
     j["odometry_lost"] = s.counters.odometry_lost;
     j["frames_missing"] = s.counters.frames_missing;
+    j["frames_too_oblique"] = s.frames_too_oblique;
     j["particles_off_map"] = s.counters.particles_off_map;
     j["reinitialisations"] = s.counters.reinitialisations;
     j["trnkit_version"] = std::string(build_info().version);  // provenance: what produced these numbers
@@ -74,6 +87,8 @@ void write_summary_json(const std::string& path, const LocalizationSummary& s, c
 
 std::string format_summary(const LocalizationSummary& s) {
     char buf[1024];
+    // Only when it happened: level flights keep their usual summary.
+    const std::string oblique = s.frames_too_oblique ? "skipped:      " + std::to_string(s.frames_too_oblique) + " frames too oblique to score\n" : "";
     if (!has_errors(s)) {
         std::snprintf(buf, sizeof buf,
                       "steps %zu\n"
@@ -82,7 +97,7 @@ std::string format_summary(const LocalizationSummary& s) {
                       "handled:      %zu odometry lost, %zu frames missing, %zu off-map particle scores, %zu re-initialisations\n",
                       s.steps, s.mean_particles, s.frames_per_second, s.mean_score_ms, s.counters.odometry_lost, s.counters.frames_missing,
                       s.counters.particles_off_map, s.counters.reinitialisations);
-        return buf;
+        return buf + oblique;
     }
     std::snprintf(buf, sizeof buf,
                   "steps %zu over %.2f km\n"
@@ -95,7 +110,7 @@ std::string format_summary(const LocalizationSummary& s) {
                   s.filter_final_error_m, s.odometry_final_error_m, s.filter_error_slope_m_per_km, s.odometry_error_slope_m_per_km,
                   s.filter_error_slope_m_per_km / s.odometry_error_slope_m_per_km, s.mean_particles, s.frames_per_second, s.mean_score_ms,
                   s.counters.odometry_lost, s.counters.frames_missing, s.counters.particles_off_map, s.counters.reinitialisations);
-    return buf;
+    return buf + oblique;
 }
 
 // A number as gnuplot reads it; NaN (too few points for a line) as gnuplot's NaN.

@@ -1,5 +1,6 @@
 #include "trn/sim/air_format.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -140,6 +141,20 @@ Quaternion attitude_quaternion(double heading, double roll, double pitch) {
 double heading_from_quaternion(const Quaternion& q) {
     const double yaw = std::atan2(2 * (q.w * q.z + q.x * q.y), 1 - 2 * (q.y * q.y + q.z * q.z));
     return wrap_angle(kPi / 2 - yaw);
+}
+
+RollPitch roll_pitch_from_quaternion(const Quaternion& in) {
+    const double n = std::sqrt(in.x * in.x + in.y * in.y + in.z * in.z + in.w * in.w);  // the reader allows 0.9-1.1
+    const Quaternion q{in.x / n, in.y / n, in.z / n, in.w / n};
+    // ZYX Euler angles of the quaternion; attitude_quaternion stores nose-up pitch as -pitch.
+    const double roll = std::atan2(2 * (q.w * q.x + q.y * q.z), 1 - 2 * (q.x * q.x + q.y * q.y));
+    const double sin_p = std::clamp(2 * (q.w * q.y - q.z * q.x), -1.0, 1.0);
+    return {roll, -std::asin(sin_p)};
+}
+
+double tilt_from_nadir(double roll_rad, double pitch_rad) {
+    // The body z axis after pitch then roll has vertical component cos(pitch) cos(roll).
+    return std::acos(std::clamp(std::cos(roll_rad) * std::cos(pitch_rad), -1.0, 1.0));
 }
 
 AirRecord make_air_record(const FlightFrame& f, const std::string& filename) {

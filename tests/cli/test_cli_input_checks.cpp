@@ -143,8 +143,6 @@ TEST_F(CliInput, LocalizeRefusesBrokenAirFoldersNamingFileAndLine) {
          "no_altitude/metadata.csv:2 (frame_000000.png): RelativeAltitude 0 m is not a flight altitude"},
         {localize(flight("off_map", {row("frame_000000.png", "200", "500")})),
          "off_map/metadata.csv:2 (frame_000000.png): the true position MapX,MapY 500,100 is outside the 240x200 px map"},
-        {localize(flight("small_frame", {ok}, 32, 24)),
-         "small_frame/metadata.csv:2 (frame_000000.png): the frame is 32x24 but flight.json's camera is 64x48"},
         {localize(flight("all_missing", {row("gone_000000.png"), row("gone_000001.png")})),
          "none of the 2 frames the filter would use exists (first: " + path("all_missing") + "/metadata.csv:2 (gone_000000.png))"},
         {localize(flight("duplicated", {ok, ok})), "duplicated/metadata.csv:3: frame_000000.png is listed again (first on line 2)"},
@@ -154,6 +152,21 @@ TEST_F(CliInput, LocalizeRefusesBrokenAirFoldersNamingFileAndLine) {
         {localize(flight("no_fps", {ok}, 64, 48, no_fps)), "no_fps/flight.json: fps 0 must be a number in (0, 1000]"},
         {localize(flight("wide_fov", {ok}, 64, 48, wide_fov)), "wide_fov/flight.json: camera.hfov_deg 600 must be a number"},
     });
+}
+
+// A frame of another size than flight.json's camera is scored at the scale of its own width
+// (issue 12 item 4), and a folder without flight.json runs from --map/--mpp/--hfov-deg.
+TEST_F(CliInput, LocalizeTakesFramesOfAnySizeAndFoldersWithoutFlightJson) {
+    const std::string small = flight("small_frame", {row("frame_000000.png"), row("frame_000001.png")}, 32, 24);
+    const auto r = run_trnkit(localize(small));
+    EXPECT_EQ(r.code, 0) << r.output;
+    const std::string bare = flight("bare", {row("frame_000000.png"), row("frame_000001.png")});
+    std::filesystem::remove(bare + "/flight.json");
+    const auto refused = run_trnkit(localize(bare));
+    EXPECT_EQ(refused.code, 1) << refused.output;
+    EXPECT_NE(refused.output.find("--map: required: " + bare + "/flight.json is absent"), std::string::npos) << refused.output;
+    const auto ran = run_trnkit(localize(bare) + " --map " + bare + "/map.png --mpp 1 --hfov-deg 60");
+    EXPECT_EQ(ran.code, 0) << ran.output;
 }
 
 TEST_F(CliInput, LocalizeNamesTheRowWhenTheLibraryRefuses) {

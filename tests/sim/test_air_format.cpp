@@ -98,6 +98,24 @@ TEST(AirFormat, QuaternionHeadingRoundTrip) {
     EXPECT_NEAR(q.w, std::sqrt(0.5), 1e-12);
 }
 
+// Roll and pitch come back from the quaternion the simulator writes (what a real flight's ImuX..W
+// carry), at any heading, and give the tilt of the optical axis.
+TEST(AirFormat, QuaternionRollPitchRoundTrip) {
+    for (double h : {0.0, 1.0, -2.5})
+        for (double roll : {0.0, 0.1, -0.3})
+            for (double pitch : {0.0, -0.2, 0.25}) {
+                const RollPitch rp = roll_pitch_from_quaternion(attitude_quaternion(h, roll, pitch));
+                EXPECT_NEAR(rp.roll_rad, roll, 1e-12) << h << " " << roll << " " << pitch;
+                EXPECT_NEAR(rp.pitch_rad, pitch, 1e-12) << h << " " << roll << " " << pitch;
+            }
+    Quaternion scaled = attitude_quaternion(0.3, 0.2, 0);  // the reader allows lengths 0.9-1.1
+    scaled.x *= 1.05, scaled.y *= 1.05, scaled.z *= 1.05, scaled.w *= 1.05;
+    EXPECT_NEAR(roll_pitch_from_quaternion(scaled).roll_rad, 0.2, 1e-12);
+    EXPECT_NEAR(tilt_from_nadir(0.2, 0), 0.2, 1e-12);
+    EXPECT_NEAR(tilt_from_nadir(0, -0.2), 0.2, 1e-12);
+    EXPECT_NEAR(std::cos(tilt_from_nadir(0.1, 0.2)), std::cos(0.1) * std::cos(0.2), 1e-12);
+}
+
 TEST(AirFormat, ReaderAcceptsQuotesAnyColumnOrderExtraColumnsCrlfAndBom) {
     std::stringstream in;
     in << "\xEF\xBB\xBF" << "Extra,MapY,MapX,Filename,Latitude,Longitude,RelativeAltitude,ImuX,ImuY,ImuZ,ImuW,PoseX,PoseY,PoseZ,"

@@ -20,8 +20,10 @@ struct FlightSample {
     double truth_x = 0, truth_y = 0, truth_yaw = 0;     // map pixels, radians
     double odometry_east_m = 0, odometry_north_m = 0;    // visual odometry, from the start (NaN: lost)
     double heading_rad = 0;                              // magnetometer / IMU heading (NaN: none)
-    double map_px_per_camera_px = 1;
-    GrayImage image;                                     // empty when it failed to load
+    double map_px_per_camera_px = 1;                     // of `image` as returned (its own width)
+    double tilt_deg = 0;                                 // optical axis from the vertical (measured roll/pitch)
+    bool too_oblique = false;                            // tilt beyond the limit: not loaded, not scored
+    GrayImage image;                                     // empty when it failed to load or is too oblique
     std::string image_error;                             // why it is empty
 };
 
@@ -37,16 +39,19 @@ struct MapExtent {
     int width = 0, height = 0;
 };
 
-// An AIR folder (flight.json gives the camera; the map resolution is the localization map's).
-// The constructor reads every row first, so a folder the filter cannot use fails at once with
-// file:line: no rows, an altitude that is no flight's, ground truth off the map, every frame
-// missing. What a run survives (a few frames missing, odometry drifting off the map) becomes
-// warnings(). While streaming, a frame whose size differs from the camera is an error: it
-// would be scored at the wrong scale.
+// An AIR folder (the camera's field of view from flight.json or the command line; the map
+// resolution is the localization map's). The constructor reads every row first, so a folder the
+// filter cannot use fails at once with file:line: no rows, an altitude that is no flight's, ground
+// truth off the map, every frame missing. What a run survives (a few frames missing, odometry
+// drifting off the map, frames too oblique) becomes warnings().
+// Each frame's scale comes from its own width (focal length = width/2 / tan(hfov/2)), so frames of
+// differing sizes are each scored at their own scale. Roll and pitch are read from ImuX..W: a
+// tilted frame is warped to nadir (nadir_warp.hpp); one tilted more than max_tilt_deg is not
+// loaded and comes back empty with too_oblique set.
 class AirFlightSource : public FlightSource {
 public:
     AirFlightSource(const std::string& folder, const sim::Camera& camera, double metres_per_pixel, double fps,
-                    std::size_t stride, std::size_t frames_hint = 0, MapExtent map = {});
+                    std::size_t stride, std::size_t frames_hint = 0, MapExtent map = {}, double max_tilt_deg = 10);
     bool next(FlightSample& sample) override;
     std::size_t frames_hint() const override { return hint_; }
     const std::vector<std::string>& warnings() const { return warnings_; }
@@ -58,7 +63,7 @@ private:
 
     sim::AirReader reader_;
     sim::Camera camera_;
-    double mpp_, fps_;
+    double mpp_, fps_, max_tilt_deg_;
     std::size_t stride_, row_ = 0, hint_, loaded_ = 0, attempted_ = 0;
     std::string last_filename_, first_load_error_;
     std::vector<std::string> warnings_;

@@ -26,6 +26,9 @@ struct LocalizationRow {
     bool odometry_lost = false, frame_missing = false, reinitialised = false;
     double lock_contrast = NAN, lock_drift_m = NAN;  // the lock monitor's evidence (lock_monitor.hpp)
     bool lock_lost = false;                          // it declared the lock lost and widened the search
+    double tilt_deg = 0;                             // of the camera from nadir (measured roll/pitch)
+    bool too_oblique = false;                        // tilted beyond the limit: not scored (not frame_missing)
+    double estimate_lat = NAN, estimate_lon = NAN;   // degrees, when the map is georeferenced (filled by the caller)
 };
 
 struct LocalizationSummary {
@@ -38,6 +41,7 @@ struct LocalizationSummary {
     double mean_particles = 0;
     double frames_per_second = 0;   // filter steps per second of wall time (sampling + scoring + estimate)
     double mean_score_ms = 0;
+    std::size_t frames_too_oblique = 0;  // not scored for tilt; counters.frames_missing excludes them
     FilterCounters counters;
 };
 

@@ -37,6 +37,14 @@ struct Quaternion {
 Quaternion attitude_quaternion(double heading_rad, double roll_rad = 0, double pitch_rad = 0);
 // Compass heading (0 north, pi/2 east) of such a quaternion.
 double heading_from_quaternion(const Quaternion& q);
+// Roll and pitch of such a quaternion (the inverse of attitude_quaternion's), radians: what a
+// camera fixed to the body (no gimbal) sees tilted by. A real AIR flight carries them in ImuX..W.
+struct RollPitch {
+    double roll_rad = 0, pitch_rad = 0;
+};
+RollPitch roll_pitch_from_quaternion(const Quaternion& q);
+// Angle between the optical axis of a camera tilted by roll and pitch and the vertical, radians.
+double tilt_from_nadir(double roll_rad, double pitch_rad);
 
 struct AirRecord {
     std::string filename;

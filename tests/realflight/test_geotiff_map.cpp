@@ -1,0 +1,166 @@
+// GeoTIFF orthophotos (issue 12 item 4): GeoTIFFs are written here with GDAL (UTM zone 32N,
+// 0.5 m pixels), read back by trn::io, and the real flight is localized on one with its estimates
+// also as latitude / longitude. In a build without GDAL every test here is reported as skipped
+// (NOT AVAILABLE), and a .tif map is refused by name.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "real_air_fixture.hpp"
+#include "trn/error.hpp"
+#include "trn/io/geotiff.hpp"
+#include "trn/io/image_io.hpp"
+
+#ifdef TRN_HAVE_GDAL
+#include <gdal_priv.h>
+#include <ogr_spatialref.h>
+#endif
+
+using trn::test::RealAirFolder;
+using trn::test::run_trnkit;
+
+namespace {
+
+// UTM zone 32N on its central meridian (9 E): easting 500000 m is longitude 9 exactly and the
+// northing is k0 * (meridian arc), so 0.9996 * 4984944.378 m (WGS84 arc to 45 N) = 4982950.400 m
+// is latitude 45 exactly. Map pixel (100, 200) is put there.
+constexpr double kPixelX = 100, kPixelY = 200, kEasting = 500000, kNorthing = 4982950.400;
+constexpr double kMpp = 0.5;
+
+#ifdef TRN_HAVE_GDAL
+enum class Georef { utm32n, rotated, no_crs };
+
+void write_geotiff(const std::string& path, const trn::GrayImage& image, Georef how) {
+    GDALAllRegister();
+    GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GTiff");
+    ASSERT_NE(driver, nullptr);
+    GDALDataset* ds = driver->Create(path.c_str(), image.width, image.height, 1, GDT_Byte, nullptr);
+    ASSERT_NE(ds, nullptr);
+    // Pixel centre (x, y) is GDAL pixel/line (x + 0.5, y + 0.5).
+    double gt[6] = {kEasting - (kPixelX + 0.5) * kMpp, kMpp, 0, kNorthing + (kPixelY + 0.5) * kMpp, 0, -kMpp};
+    if (how == Georef::rotated) gt[2] = 0.05, gt[4] = 0.05;
+    ds->SetGeoTransform(gt);
+    if (how != Georef::no_crs) {
+        OGRSpatialReference srs;
+        ASSERT_EQ(srs.importFromEPSG(32632), OGRERR_NONE);
+        ds->SetSpatialRef(&srs);
+    }
+    ASSERT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, image.width, image.height, const_cast<std::uint8_t*>(image.pixels.data()),
+                                             image.width, image.height, GDT_Byte, 0, 0),
+              CE_None);
+    GDALClose(ds);
+}
+
+trn::GrayImage texture(int w, int h) {
+    trn::GrayImage g{w, h, std::vector<std::uint8_t>(std::size_t(w) * h)};
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) g.pixels[std::size_t(y) * w + x] = static_cast<std::uint8_t>((x * 7 + y * 13) % 251);
+    return g;
+}
+#endif
+
+#define SKIP_WITHOUT_GDAL()                                                                            \
+    do {                                                                                               \
+        if (!trn::io::geotiff_supported()) GTEST_SKIP() << "GDAL NOT AVAILABLE: GeoTIFF maps not built"; \
+    } while (0)
+
+std::string temp(const std::string& name) { return testing::TempDir() + "/geotiff_" + std::to_string(::getpid()) + "_" + name; }
+
+}  // namespace
+
+TEST(GeoTiffMap, ResolutionAndLatLonOfAKnownPixelMatchTheHandComputedUtmValues) {
+    SKIP_WITHOUT_GDAL();
+#ifdef TRN_HAVE_GDAL
+    const std::string path = temp("utm.tif");
+    write_geotiff(path, texture(300, 260), Georef::utm32n);
+    const trn::io::GeoTiff g = trn::io::read_geotiff(path);
+    EXPECT_EQ(g.image.width, 300);
+    EXPECT_EQ(g.image.pixels, texture(300, 260).pixels);
+    EXPECT_DOUBLE_EQ(g.metres_per_pixel, 0.5);
+    EXPECT_EQ(g.crs_name, "WGS 84 / UTM zone 32N");
+    const trn::io::GeoReference geo(g, path);
+    const trn::io::GeoPoint p = geo.to_latlon(kPixelX, kPixelY);
+    EXPECT_NEAR(p.latitude_deg, 45.0, 1e-8);  // 1e-8 deg is ~1 mm
+    EXPECT_NEAR(p.longitude_deg, 9.0, 1e-8);
+    // 200 px (100 m) east at 45 N: 100 m / (cos 45 * 111.3 km/deg) ~ 0.00127 deg of longitude.
+    const trn::io::GeoPoint e = geo.to_latlon(kPixelX + 200, kPixelY);
+    EXPECT_NEAR(e.longitude_deg - 9.0, 100 / (std::cos(45 * 3.14159265358979 / 180) * 111319.49), 2e-6);
+    const auto back = geo.to_pixel(p.latitude_deg, p.longitude_deg);  // the inverse, to 1 um
+    EXPECT_NEAR(back[0], kPixelX, 2e-6);
+    EXPECT_NEAR(back[1], kPixelY, 2e-6);
+    const auto hand = geo.to_pixel(45.0, 9.0);  // the hand value's northing is rounded to 1 mm
+    EXPECT_NEAR(hand[0], kPixelX, 1e-3);
+    EXPECT_NEAR(hand[1], kPixelY, 1e-3);
+    std::filesystem::remove(path);
+#endif
+}
+
+TEST(GeoTiffMap, RefusesRotatedAndCrsLessFilesNamingThem) {
+    SKIP_WITHOUT_GDAL();
+#ifdef TRN_HAVE_GDAL
+    const std::string rotated = temp("rotated.tif"), no_crs = temp("no_crs.tif");
+    write_geotiff(rotated, texture(64, 64), Georef::rotated);
+    write_geotiff(no_crs, texture(64, 64), Georef::no_crs);
+    for (const auto& [path, why] : {std::pair{rotated, "geotransform is rotated or sheared"}, std::pair{no_crs, "no coordinate reference system"}}) {
+        try {
+            trn::io::read_geotiff(path);
+            ADD_FAILURE() << path << " was accepted";
+        } catch (const trn::Error& e) {
+            EXPECT_EQ(std::string(e.what()).rfind(path + ": ", 0), 0u) << e.what();
+            EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
+        }
+        // The CLI: one line, exit 1, before any work.
+        const auto r = run_trnkit("localize --dataset " + testing::TempDir() + " --map " + path + " --hfov-deg 60 --no-plots --out " +
+                                  temp("never"));
+        EXPECT_EQ(r.code, 1) << r.output;
+        EXPECT_NE(r.output.find(why), std::string::npos) << r.output;
+        EXPECT_FALSE(std::filesystem::exists(temp("never")));
+        std::filesystem::remove(path);
+    }
+#endif
+}
+
+// Without GDAL a .tif map is an error that says so (this build has GDAL, then this is skipped).
+TEST(GeoTiffMap, WithoutGdalATifMapIsRefusedNamingTheFile) {
+    if (trn::io::geotiff_supported()) GTEST_SKIP() << "this build has GDAL; the refusal applies to builds without it";
+    const auto r = run_trnkit("localize --dataset " + testing::TempDir() + " --map " + temp("x.tif") + " --hfov-deg 60 --no-plots");
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_NE(r.output.find("GeoTIFF maps are read with GDAL, and this build of trnkit has none"), std::string::npos) << r.output;
+}
+
+// The real flight on the orthophoto as a GeoTIFF, no flight.json, no --mpp: the resolution comes
+// from the geotransform, and every estimate is also written as latitude / longitude.
+TEST_F(RealAirFolder, LocalizesOnAGeoTiffMapAndWritesLatLon) {
+    SKIP_WITHOUT_GDAL();
+#ifdef TRN_HAVE_GDAL
+    const std::string tif = dir_ + "/orthophoto.tif";
+    write_geotiff(tif, trn::load_gray(map()), Georef::utm32n);
+    std::filesystem::remove(dir_ + "/flight.json");
+    const std::string out = dir_ + "/geo";
+    const auto r = localize("--map " + tif + " --hfov-deg 60", 1, out);
+    ASSERT_EQ(r.code, 0) << r.output;
+    const auto j = summary(out);
+    std::cout << "GeoTIFF map: filter mean " << j["filter_mean_error_m"] << " m, odometry mean " << j["odometry_mean_error_m"] << " m, final "
+              << j["final_estimate_lat"] << ", " << j["final_estimate_lon"] << "\n";
+    EXPECT_EQ(j["metres_per_pixel"], 0.5);
+    EXPECT_LE(j["filter_mean_error_m"].get<double>(), 0.5 * j["odometry_mean_error_m"].get<double>());
+    EXPECT_NE(j["georeference"].get<std::string>().find("UTM zone 32N"), std::string::npos) << j.dump();
+    const trn::io::GeoTiff g = trn::io::read_geotiff(tif);
+    const trn::io::GeoReference geo(g, tif);
+    const auto rows = csv(out + "/localization.csv");
+    ASSERT_EQ(rows.size(), 16u);
+    for (const auto& row : rows) {
+        const trn::io::GeoPoint p = geo.to_latlon(std::stod(row.at("estimate_x")), std::stod(row.at("estimate_y")));
+        EXPECT_NEAR(std::stod(row.at("est_lat")), p.latitude_deg, 1e-8);
+        EXPECT_NEAR(std::stod(row.at("est_lon")), p.longitude_deg, 1e-8);
+        EXPECT_NEAR(p.latitude_deg, 45, 0.01);  // the map spans ~0.9 km around 45 N, 9 E
+        EXPECT_NEAR(p.longitude_deg, 9, 0.02);
+    }
+    EXPECT_NEAR(j["final_estimate_lat"].get<double>(), std::stod(rows.back().at("est_lat")), 1e-9);
+    EXPECT_NEAR(j["final_estimate_lon"].get<double>(), std::stod(rows.back().at("est_lon")), 1e-9);
+    // --mpp that contradicts the geotransform is refused.
+    const auto bad = localize("--map " + tif + " --hfov-deg 60 --mpp 0.6", 1, dir_ + "/bad");
+    EXPECT_EQ(bad.code, 1) << bad.output;
+    EXPECT_NE(bad.output.find("--mpp 0.6 contradicts " + tif), std::string::npos) << bad.output;
+#endif
+}
