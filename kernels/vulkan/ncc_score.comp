@@ -9,9 +9,9 @@
 // in 1/128 grey levels) and accumulates n, sum I, sum I^2, sum I*T, sum T, sum T^2 over the valid
 // samples, exactly: 64-bit sums as pairs of uint32 with carries (shaderInt64 is optional, e.g. on
 // Mali), 32-bit runs where they cannot overflow. The work-group then adds the sums per particle
-// (subgroup arithmetic on 16-bit pieces when TRN_SUBGROUP_REDUCE is defined, shared memory
-// otherwise); integer sums do not depend on the order, so every device and group shape gives
-// cpu-ref's bits. The host turns the sums into scores (finalize_score).
+// one sum at a time (subgroup arithmetic on 16-bit pieces when TRN_SUBGROUP_REDUCE is defined,
+// a shared-memory tree otherwise); integer sums do not depend on the order, so every device and
+// group shape gives cpu-ref's bits. The host turns the sums into scores (finalize_score).
 //
 // Why it is shaped this way: on lavapipe every storage-buffer read at a per-invocation address
 // costs a scalar loop over the SIMD lanes, so the kernel keeps such reads few: the template value
@@ -136,6 +136,10 @@ uvec2 add64(uvec2 a, uvec2 b) {
 uvec2 add64u(uvec2 a, uint x) { return add64(a, uvec2(x, 0u)); }
 uvec2 add64s(uvec2 a, int x) { return add64(a, uvec2(uint(x), x < 0 ? 0xFFFFFFFFu : 0u)); }
 
+// One 64-bit partial per subgroup (or invocation). Reused for every sum of every particle, so
+// shared memory stays 8 bytes per invocation (8 KiB at 1024) whatever PARTICLES_PER_GROUP is.
+shared uvec2 red[WORKGROUP_SIZE];
+
 #ifdef TRN_SUBGROUP_REDUCE
 // Subgroup sum of 64-bit values: the low word in two 16-bit pieces (sums below 2^32 for any
 // subgroup of up to 65536), the high word modulo 2^32, recombined with carries.
@@ -145,9 +149,29 @@ uvec2 subgroup_add64(uvec2 v) {
 }
 #endif
 
-// Partial sums of (particle p, sum f) for each subgroup (or invocation): index (p*5 + f)*WORKGROUP_SIZE + s.
-shared uint red_n[PARTICLES_PER_GROUP * WORKGROUP_SIZE];
-shared uvec2 red_w[PARTICLES_PER_GROUP * 5u * WORKGROUP_SIZE];
+// The work-group's sum of v, returned to every invocation. Call from uniform control flow.
+uvec2 workgroup_add64(uvec2 v) {
+#ifdef TRN_SUBGROUP_REDUCE
+    // Subgroup sums first (the device's subgroup size, never assumed), then the subgroups' results.
+    uvec2 s = subgroup_add64(v);
+    if (subgroupElect()) red[gl_SubgroupID] = s;
+    barrier();
+    uvec2 total = uvec2(0u);
+    for (uint i = 0u; i < gl_NumSubgroups; ++i) total = add64(total, red[i]);
+#else
+    // Shared-memory tree (WORKGROUP_SIZE is a power of two).
+    uint lid = gl_LocalInvocationID.x;
+    red[lid] = v;
+    barrier();
+    for (uint half_size = WORKGROUP_SIZE / 2u; half_size > 0u; half_size /= 2u) {
+        if (lid < half_size) red[lid] = add64(red[lid], red[lid + half_size]);
+        barrier();
+    }
+    uvec2 total = red[0];
+#endif
+    barrier();  // everyone has read `red` before the next call writes it
+    return total;
+}
 
 void main() {
     uint group = gl_WorkGroupID.x + gl_WorkGroupID.y * gl_NumWorkGroups.x;
@@ -208,64 +232,14 @@ void main() {
         }
     }
 
-#ifdef TRN_SUBGROUP_REDUCE
-    // Subgroup sums first (the device's subgroup size, never assumed), then invocation p adds
-    // particle p's subgroup results.
+    // Invocation 0 writes each particle's sums.
     for (uint p = 0u; p < PARTICLES_PER_GROUP; ++p) {
-        uint sn = subgroupAdd(n[p]);
-        uvec2 s0 = subgroup_add64(sj[p]), s1 = subgroup_add64(sjj[p]), s2 = subgroup_add64(sjt[p]);
-        uvec2 s3 = subgroup_add64(st[p]), s4 = subgroup_add64(stt[p]);
-        if (subgroupElect()) {
-            red_n[p * WORKGROUP_SIZE + gl_SubgroupID] = sn;
-            red_w[(p * 5u + 0u) * WORKGROUP_SIZE + gl_SubgroupID] = s0;
-            red_w[(p * 5u + 1u) * WORKGROUP_SIZE + gl_SubgroupID] = s1;
-            red_w[(p * 5u + 2u) * WORKGROUP_SIZE + gl_SubgroupID] = s2;
-            red_w[(p * 5u + 3u) * WORKGROUP_SIZE + gl_SubgroupID] = s3;
-            red_w[(p * 5u + 4u) * WORKGROUP_SIZE + gl_SubgroupID] = s4;
-        }
-    }
-    barrier();
-    const uint partials = gl_NumSubgroups;
-#else
-    // Shared-memory tree reduction (WORKGROUP_SIZE is a power of two).
-    for (uint p = 0u; p < PARTICLES_PER_GROUP; ++p) {
-        red_n[p * WORKGROUP_SIZE + lid] = n[p];
-        red_w[(p * 5u + 0u) * WORKGROUP_SIZE + lid] = sj[p];
-        red_w[(p * 5u + 1u) * WORKGROUP_SIZE + lid] = sjj[p];
-        red_w[(p * 5u + 2u) * WORKGROUP_SIZE + lid] = sjt[p];
-        red_w[(p * 5u + 3u) * WORKGROUP_SIZE + lid] = st[p];
-        red_w[(p * 5u + 4u) * WORKGROUP_SIZE + lid] = stt[p];
-    }
-    barrier();
-    for (uint half_size = WORKGROUP_SIZE / 2u; half_size > 0u; half_size /= 2u) {
-        if (lid < half_size) {
-            for (uint p = 0u; p < PARTICLES_PER_GROUP; ++p) {
-                red_n[p * WORKGROUP_SIZE + lid] += red_n[p * WORKGROUP_SIZE + lid + half_size];
-                for (uint f = 0u; f < 5u; ++f) {
-                    uint at = (p * 5u + f) * WORKGROUP_SIZE + lid;
-                    red_w[at] = add64(red_w[at], red_w[at + half_size]);
-                }
-            }
-        }
-        barrier();
-    }
-    const uint partials = 1u;
-#endif
-    // Invocation p writes particle p's sums.
-    for (uint p = 0u; p < PARTICLES_PER_GROUP; ++p) {
-        if (lid != p % WORKGROUP_SIZE || first + p >= pc.particle_count) continue;
-        uint tn = 0u;
-        uvec2 t0 = uvec2(0u), t1 = uvec2(0u), t2 = uvec2(0u), t3 = uvec2(0u), t4 = uvec2(0u);
-        for (uint s = 0u; s < partials; ++s) {
-            tn += red_n[p * WORKGROUP_SIZE + s];
-            t0 = add64(t0, red_w[(p * 5u + 0u) * WORKGROUP_SIZE + s]);
-            t1 = add64(t1, red_w[(p * 5u + 1u) * WORKGROUP_SIZE + s]);
-            t2 = add64(t2, red_w[(p * 5u + 2u) * WORKGROUP_SIZE + s]);
-            t3 = add64(t3, red_w[(p * 5u + 3u) * WORKGROUP_SIZE + s]);
-            t4 = add64(t4, red_w[(p * 5u + 4u) * WORKGROUP_SIZE + s]);
-        }
+        uvec2 tn = workgroup_add64(uvec2(n[p], 0u));
+        uvec2 t0 = workgroup_add64(sj[p]), t1 = workgroup_add64(sjj[p]), t2 = workgroup_add64(sjt[p]);
+        uvec2 t3 = workgroup_add64(st[p]), t4 = workgroup_add64(stt[p]);
         uint pid = first + p;
-        sums[pid].n = tn;
+        if (lid != 0u || pid >= pc.particle_count) continue;
+        sums[pid].n = tn.x;
         sums[pid].unused = 0u;
         sums[pid].sj = t0;
         sums[pid].sjj = t1;
