@@ -8,10 +8,10 @@
 // host), samples the map with the integer bilinear rule of scoring.hpp (7-bit weights, the value I
 // in 1/128 grey levels) and accumulates n, sum I, sum I^2, sum I*T, sum T, sum T^2 over the valid
 // samples, exactly: 64-bit sums as pairs of uint32 with carries (shaderInt64 is optional, e.g. on
-// Mali), 32-bit runs where they cannot overflow. The work-group then adds the sums per particle
-// one sum at a time (subgroup arithmetic on 16-bit pieces when TRN_SUBGROUP_REDUCE is defined,
-// a shared-memory tree otherwise); integer sums do not depend on the order, so every device and
-// group shape gives cpu-ref's bits. The host turns the sums into scores (finalize_score).
+// Mali), 32-bit runs where they cannot overflow. The work-group then adds the sums, as many per
+// round as 16 KiB of shared memory holds (subgroup arithmetic on 16-bit pieces when
+// TRN_SUBGROUP_REDUCE is defined, a shared-memory tree otherwise); integer sums do not depend on
+// the order, so every device and group shape gives cpu-ref's bits. The host turns the sums into scores (finalize_score).
 //
 // Why it is shaped this way: on lavapipe every storage-buffer read at a per-invocation address
 // costs a scalar loop over the SIMD lanes, so the kernel keeps such reads few: the template value
@@ -50,11 +50,8 @@ layout(local_size_x_id = 0) in;
 // v*W+u of each sample.
 layout(std430, binding = 0) readonly buffer SampleTable { uint table[]; };
 layout(std430, binding = 1) readonly buffer Affines { float affines[]; };  // a b c d tx ty per particle
-struct GroupSums {  // 64-bit sums as (low, high) words
-    uint n, unused;
-    uvec2 sj, sjj, sjt, st, stt;
-};
-layout(std430, binding = 2) writeonly buffer Sums { GroupSums sums[]; };
+// Per particle six 64-bit sums as (low, high) words: n, sum I, sum I^2, sum I*T, sum T, sum T^2.
+layout(std430, binding = 2) writeonly buffer Sums { uvec2 sums[]; };
 layout(std430, binding = 3) readonly buffer MapChunk { uint words[]; } map_chunks[TRN_MAX_MAP_CHUNKS];  // bytes layout
 layout(binding = 4) uniform usamplerBuffer map_quads[TRN_MAX_MAP_CHUNKS];  // quad layout (R32_UINT)
 
@@ -136,10 +133,6 @@ uvec2 add64(uvec2 a, uvec2 b) {
 uvec2 add64u(uvec2 a, uint x) { return add64(a, uvec2(x, 0u)); }
 uvec2 add64s(uvec2 a, int x) { return add64(a, uvec2(uint(x), x < 0 ? 0xFFFFFFFFu : 0u)); }
 
-// One 64-bit partial per subgroup (or invocation). Reused for every sum of every particle, so
-// shared memory stays 8 bytes per invocation (8 KiB at 1024) whatever PARTICLES_PER_GROUP is.
-shared uvec2 red[WORKGROUP_SIZE];
-
 #ifdef TRN_SUBGROUP_REDUCE
 // Subgroup sum of 64-bit values: the low word in two 16-bit pieces (sums below 2^32 for any
 // subgroup of up to 65536), the high word modulo 2^32, recombined with carries.
@@ -149,29 +142,12 @@ uvec2 subgroup_add64(uvec2 v) {
 }
 #endif
 
-// The work-group's sum of v, returned to every invocation. Call from uniform control flow.
-uvec2 workgroup_add64(uvec2 v) {
-#ifdef TRN_SUBGROUP_REDUCE
-    // Subgroup sums first (the device's subgroup size, never assumed), then the subgroups' results.
-    uvec2 s = subgroup_add64(v);
-    if (subgroupElect()) red[gl_SubgroupID] = s;
-    barrier();
-    uvec2 total = uvec2(0u);
-    for (uint i = 0u; i < gl_NumSubgroups; ++i) total = add64(total, red[i]);
-#else
-    // Shared-memory tree (WORKGROUP_SIZE is a power of two).
-    uint lid = gl_LocalInvocationID.x;
-    red[lid] = v;
-    barrier();
-    for (uint half_size = WORKGROUP_SIZE / 2u; half_size > 0u; half_size /= 2u) {
-        if (lid < half_size) red[lid] = add64(red[lid], red[lid + half_size]);
-        barrier();
-    }
-    uvec2 total = red[0];
-#endif
-    barrier();  // everyone has read `red` before the next call writes it
-    return total;
-}
+// The group reduces SLOTS of its 6 * PARTICLES_PER_GROUP sums per round (two barriers a round; on
+// lavapipe barriers dominate when there are many), with one 64-bit partial per slot and subgroup
+// (or invocation): at most 2048 of them, 16 KiB, the least maxComputeSharedMemorySize allows.
+const uint SUM_COUNT = 6u * PARTICLES_PER_GROUP;
+const uint SLOTS = SUM_COUNT < 2048u / WORKGROUP_SIZE ? SUM_COUNT : 2048u / WORKGROUP_SIZE;
+shared uvec2 red[SLOTS * WORKGROUP_SIZE];
 
 void main() {
     uint group = gl_WorkGroupID.x + gl_WorkGroupID.y * gl_NumWorkGroups.x;
@@ -232,19 +208,47 @@ void main() {
         }
     }
 
-    // Invocation 0 writes each particle's sums.
+    // Sum q = 6p + f of this invocation (f: n, sj, sjj, sjt, st, stt of particle p).
+    uvec2 mine[SUM_COUNT];
     for (uint p = 0u; p < PARTICLES_PER_GROUP; ++p) {
-        uvec2 tn = workgroup_add64(uvec2(n[p], 0u));
-        uvec2 t0 = workgroup_add64(sj[p]), t1 = workgroup_add64(sjj[p]), t2 = workgroup_add64(sjt[p]);
-        uvec2 t3 = workgroup_add64(st[p]), t4 = workgroup_add64(stt[p]);
-        uint pid = first + p;
-        if (lid != 0u || pid >= pc.particle_count) continue;
-        sums[pid].n = tn.x;
-        sums[pid].unused = 0u;
-        sums[pid].sj = t0;
-        sums[pid].sjj = t1;
-        sums[pid].sjt = t2;
-        sums[pid].st = t3;
-        sums[pid].stt = t4;
+        mine[6u * p + 0u] = uvec2(n[p], 0u);
+        mine[6u * p + 1u] = sj[p];
+        mine[6u * p + 2u] = sjj[p];
+        mine[6u * p + 3u] = sjt[p];
+        mine[6u * p + 4u] = st[p];
+        mine[6u * p + 5u] = stt[p];
+    }
+    for (uint base = 0u; base < SUM_COUNT; base += SLOTS) {
+#ifdef TRN_SUBGROUP_REDUCE
+        // Subgroup sums first (the device's subgroup size, never assumed), then invocation 0 adds
+        // the subgroups' results.
+        for (uint s = 0u; s < SLOTS && base + s < SUM_COUNT; ++s) {
+            uvec2 v = subgroup_add64(mine[base + s]);
+            if (subgroupElect()) red[s * WORKGROUP_SIZE + gl_SubgroupID] = v;
+        }
+        barrier();
+        const uint partials = gl_NumSubgroups;
+#else
+        // Shared-memory tree (WORKGROUP_SIZE is a power of two).
+        for (uint s = 0u; s < SLOTS && base + s < SUM_COUNT; ++s) red[s * WORKGROUP_SIZE + lid] = mine[base + s];
+        barrier();
+        for (uint half_size = WORKGROUP_SIZE / 2u; half_size > 0u; half_size /= 2u) {
+            if (lid < half_size)
+                for (uint s = 0u; s < SLOTS && base + s < SUM_COUNT; ++s)
+                    red[s * WORKGROUP_SIZE + lid] = add64(red[s * WORKGROUP_SIZE + lid], red[s * WORKGROUP_SIZE + lid + half_size]);
+            barrier();
+        }
+        const uint partials = 1u;
+#endif
+        if (lid == 0u) {
+            for (uint s = 0u; s < SLOTS && base + s < SUM_COUNT; ++s) {
+                uint q = base + s, pid = first + q / 6u;
+                if (pid >= pc.particle_count) continue;  // a spare slot of the last group
+                uvec2 total = uvec2(0u);
+                for (uint i = 0u; i < partials; ++i) total = add64(total, red[s * WORKGROUP_SIZE + i]);
+                sums[6u * pid + q % 6u] = total;
+            }
+        }
+        barrier();  // red is read before the next round writes it
     }
 }
