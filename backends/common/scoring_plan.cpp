@@ -7,6 +7,7 @@
 #include <string>
 
 #include "trn/error.hpp"
+#include "trn/fixed_point.hpp"
 #include "trn/limits.hpp"
 
 namespace trn {
@@ -29,6 +30,20 @@ std::uint64_t splitmix64(std::uint64_t& state) {
     z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
     z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
     return z ^ (z >> 31);
+}
+
+// T = round((t - offset) * 2^k): offset = the rounded mean (an integer, so 8-bit templates stay
+// exact), k the largest exponent <= 16 with max |t - offset| * 2^k <= 32767 (>= -11 for |t| <= 2^24).
+void quantize_template(const std::vector<double>& values, ScoringPlan& plan) {
+    plan.template_offset = std::round(plan.template_mean);
+    double spread = 0;
+    for (double v : values) spread = std::max(spread, std::fabs(v - plan.template_offset));  // exact in double
+    int k = 16;
+    while (k > -64 && std::ldexp(spread, k) > fixed::kMaxTemplate) --k;
+    plan.template_exponent = k;
+    plan.quantized.resize(values.size());
+    for (std::size_t i = 0; i < values.size(); ++i)
+        plan.quantized[i] = static_cast<std::int32_t>(std::llround(std::ldexp(values[i] - plan.template_offset, k)));
 }
 
 }  // namespace
@@ -106,14 +121,28 @@ ScoringPlan make_scoring_plan(const TemplateView& templ, const ScoreOptions& opt
         for (const SamplePoint& p : plan.points) values.push_back(templ.at(p.u, p.v));
     }
     for (std::size_t i = 0; i < values.size(); ++i)
-        if (!std::isfinite(values[i])) throw Error("score: template sample " + std::to_string(i) + " is not finite");
+        if (!std::isfinite(values[i]) || std::fabs(values[i]) > fixed::kMaxTemplateMagnitude)
+            throw Error("score: template sample " + std::to_string(i) + " (" + std::to_string(values[i]) + ") is " +
+                        (std::isfinite(values[i]) ? "beyond +-16777216 (2^24), the largest template value exact scoring takes"
+                                                  : "not finite"));
     plan.template_mean = std::accumulate(values.begin(), values.end(), 0.0) / static_cast<double>(values.size());
-    plan.centered.resize(values.size());
-    for (std::size_t i = 0; i < values.size(); ++i)
-        plan.centered[i] = static_cast<float>(values[i] - plan.template_mean);
+    quantize_template(values, plan);
     return plan;
 }
 
+namespace {
+
+__extension__ using Wide = __int128;  // GCC and Clang on 64-bit targets
+
+Wide pow2(int e) { return Wide(1) << e; }
+
+}  // namespace
+
+// Everything is computed from the exact integer sums: the variances and covariance as 128-bit
+// integers (n * sum - sum * sum, no cancellation error), then one double division per score.
+// CC and SSD need the raw template values t = offset + T / 2^k and map values i = I / 128; both
+// are integers in units of 2^-e with e = max(k, 7), so their sums are exact 128-bit integers too
+// (|offset * 2^e| <= 2^40, so n * (offset * 2^e)^2 <= 2^104).
 ParticleScore finalize_score(const ParticleSums& s, const ScoringPlan& plan) {
     ParticleScore r;
     r.valid_samples = static_cast<std::uint32_t>(s.n);
@@ -121,24 +150,28 @@ ParticleScore finalize_score(const ParticleSums& s, const ScoringPlan& plan) {
         r.flags = kTooFewSamples;
         return r;
     }
-    const double n = s.n;
-    const double var_j = s.sjj - s.sj * s.sj / n;  // n * variance of the patch
-    const double var_t = s.stt - s.st * s.st / n;  // n * variance of the template over valid samples
-    if (is_flat(var_t, n, s.st / n)) r.flags |= kFlatTemplate;
-    if (is_flat(var_j, n, s.sj / n + s.shift)) r.flags |= kFlatPatch;
+    const Wide n = s.n;
+    const Wide var_i = n * s.sjj - Wide(s.sj) * s.sj;  // n^2 * variance, in (1/128 grey)^2
+    const Wide var_t = n * s.stt - Wide(s.st) * s.st;  // n^2 * variance, in (2^-k grey)^2
+    const Wide cov = n * s.sjt - Wide(s.sj) * s.st;
+    const double nd = static_cast<double>(s.n), k = plan.template_exponent;
+    // n * variance in grey levels^2, for the flatness rule.
+    if (is_flat(std::ldexp(static_cast<double>(var_t), -2 * int(k)) / nd, nd)) r.flags |= kFlatTemplate;
+    if (is_flat(std::ldexp(static_cast<double>(var_i), -2 * fixed::kValueBits) / nd, nd)) r.flags |= kFlatPatch;
     if (r.flags) return r;
+    const double ncc = static_cast<double>(cov) / std::sqrt(static_cast<double>(var_i) * static_cast<double>(var_t));
 
-    const double ncc = (s.sjt - s.sj * s.st / n) / std::sqrt(var_j * var_t);
-    // Raw sums for CC and SSD from the shifted / centred ones.
-    const double mt = plan.template_mean, k = s.shift;
-    const double sum_tt = s.stt + 2 * mt * s.st + n * mt * mt;
-    const double sum_i = s.sj + n * k;
-    const double sum_ii = s.sjj + 2 * k * s.sj + n * k * k;
-    const double sum_ti = s.sjt + k * s.st + mt * sum_i;
-    const double norm = std::sqrt(sum_tt * sum_ii);
+    const int e = std::max(plan.template_exponent, fixed::kValueBits);
+    const Wide a = static_cast<Wide>(plan.template_offset) * pow2(e);  // offset in units of 2^-e
+    const Wide ts = pow2(e - plan.template_exponent), is = pow2(e - fixed::kValueBits);
+    const Wide sum_tt = n * a * a + 2 * a * (s.st * ts) + Wide(s.stt) * ts * ts;
+    const Wide sum_ii = Wide(s.sjj) * is * is;
+    const Wide sum_ti = a * (s.sj * is) + Wide(s.sjt) * ts * is;
+    const Wide sum_dd = sum_tt - 2 * sum_ti + sum_ii;  // sum (t - i)^2, exactly
+    const double norm = std::sqrt(static_cast<double>(sum_tt) * static_cast<double>(sum_ii));
     r.ncc = static_cast<float>(std::clamp(ncc, -1.0, 1.0));
-    r.cc = norm > 0 ? static_cast<float>(sum_ti / norm) : 0.0f;
-    r.ssd = norm > 0 ? static_cast<float>(1.0 - (sum_tt - 2 * sum_ti + sum_ii) / norm) : 0.0f;
+    r.cc = norm > 0 ? static_cast<float>(static_cast<double>(sum_ti) / norm) : 0.0f;
+    r.ssd = norm > 0 ? static_cast<float>(1.0 - static_cast<double>(sum_dd) / norm) : 0.0f;
     return r;
 }
 

@@ -1,6 +1,6 @@
 // cpu: the fast CPU backend. A thread pool over particles (scoring) or rows (Sobel); inner loops are
-// branch-free so the compiler vectorizes them; sums are float within a template row and double
-// across rows, which keeps NCC within 1e-6 of the double reference on 640x480 templates.
+// branch-free so the compiler vectorizes them; sums are the exact integers of scoring.hpp, so
+// scores equal cpu-ref's bit for bit.
 #include "cpu_backend.hpp"
 #include "ncc_rows.hpp"
 #include "thread_pool.hpp"
@@ -32,16 +32,6 @@ public:
     std::ptrdiff_t stride;
     std::vector<std::uint8_t> pixels;
 };
-
-float centre_value(const CpuMap& m, float x, float y) {
-    x = std::clamp(x, 0.0f, float(m.width() - 1));
-    y = std::clamp(y, 0.0f, float(m.height() - 1));
-    const int x0 = std::min(int(x), m.width() - 2), y0 = std::min(int(y), m.height() - 2);
-    const float fx = x - float(x0), fy = y - float(y0);
-    const std::uint8_t* p = m.pixels.data() + y0 * m.stride + x0;
-    const float top = p[0] + fx * (p[1] - p[0]), bot = p[m.stride] + fx * (p[m.stride + 1] - p[m.stride]);
-    return top + fy * (bot - top);
-}
 
 // True when every sample position of the template rectangle lies inside the map, so per-sample
 // checks can be skipped. The mapped rectangle is convex, so its four corners decide; a one-pixel
@@ -99,6 +89,7 @@ protected:
         const auto t0 = Clock::now();
         const CpuMap& map = static_cast<const CpuMap&>(storage);
         prepare_offsets(plan);
+        prepare_template_totals(plan);
         pool_.parallel_for(static_cast<std::int64_t>(poses.size()), 2, [&](std::int64_t begin, std::int64_t end) {
             for (std::int64_t p = begin; p < end; ++p) out[p] = score_one(map, plan, poses[p]);
         });
@@ -108,6 +99,12 @@ protected:
     void do_sobel(GrayView src, Int16View gx, Int16View gy, PhaseTimes* times) override;
 
 private:
+    // Sum of T and T^2 over every sample, taken by particles whose samples are all inside the map.
+    void prepare_template_totals(const ScoringPlan& plan) {
+        st_ = 0, stt_ = 0;
+        for (const std::int32_t t : plan.quantized) st_ += t, stt_ += std::int64_t(t) * t;
+    }
+
     // du (and for sparse plans dv) per sample, cached across calls with the same template geometry
     // so steady-state calls allocate nothing.
     void prepare_offsets(const ScoringPlan& plan) {
@@ -128,23 +125,22 @@ private:
         static thread_local Scratch scratch;
         const Affine A = pose_to_affine(pose);
         ParticleSums sums;
-        sums.shift = centre_value(map, pose.x, pose.y);
-        const float shift = static_cast<float>(sums.shift);
         const cpu::MapPixels pixels = map.view();
         const bool inside = patch_inside(map, A, plan);
         const bool vector = inside && use_avx2_ && std::int64_t(map.stride) * map.height() < (std::int64_t(1) << 31);
+        if (inside) sums.n = static_cast<std::int64_t>(plan.sample_count()), sums.st = st_, sums.stt = stt_;
         auto add = [&](const cpu::RowInput& row) {
-            const cpu::RowSums r = vector   ? cpu::sample_row_inside_avx2(pixels, row, shift)
-                                   : inside ? cpu::sample_row_inside(pixels, row, shift)
-                                            : cpu::sample_row_checked(pixels, row, shift);
+            const cpu::RowSums r = vector   ? cpu::sample_row_inside_avx2(pixels, row)
+                                   : inside ? cpu::sample_row_inside(pixels, row)
+                                            : cpu::sample_row_checked(pixels, row);
             sums.n += r.n, sums.sj += r.sj, sums.sjj += r.sjj, sums.sjt += r.sjt, sums.st += r.st, sums.stt += r.stt;
         };
         const std::size_t count = du_.size();
-        constexpr int kChunk = 512;  // sparse: float sums over short runs, double across them
+        constexpr int kChunk = 512;  // sparse: samples per call of the row sampler
         const int total = static_cast<int>(count);
         if (!plan.dense && vector) {  // positions computed in registers, nothing precomputed
             for (int k = 0; k < total; k += kChunk) {
-                cpu::RowInput row{nullptr, nullptr, 0, 0, nullptr, nullptr, plan.centered.data() + k, std::min(kChunk, total - k)};
+                cpu::RowInput row{nullptr, nullptr, 0, 0, nullptr, nullptr, plan.quantized.data() + k, std::min(kChunk, total - k)};
                 row.du = du_.data() + k, row.dv = dv_.data() + k;
                 row.a = A.a, row.b = A.b, row.c = A.c, row.d = A.d, row.tx = A.tx, row.ty = A.ty;
                 add(row);
@@ -161,7 +157,7 @@ private:
             for (int v = 0; v < plan.height; ++v) {
                 const float dv = float(v) - plan.cy;
                 add({scratch.ax.data(), scratch.ay.data(), A.b * dv, A.d * dv, nullptr, nullptr,
-                     plan.centered.data() + std::size_t(v) * plan.width, plan.width});
+                     plan.quantized.data() + std::size_t(v) * plan.width, plan.width});
             }
         } else {
             for (std::size_t k = 0; k < count; ++k) {
@@ -170,7 +166,7 @@ private:
             }
             for (int k = 0; k < total; k += kChunk)
                 add({scratch.ax.data() + k, scratch.ay.data() + k, 0, 0, scratch.bdv.data() + k, scratch.ddv.data() + k,
-                     plan.centered.data() + k, std::min(kChunk, total - k)});
+                     plan.quantized.data() + k, std::min(kChunk, total - k)});
         }
         return finalize_score(sums, plan);
     }
@@ -179,6 +175,7 @@ private:
     bool use_avx2_ = simd_enabled();
     cpu::ThreadPool pool_{thread_count()};
     std::vector<float> du_, dv_;
+    std::int64_t st_ = 0, stt_ = 0;
 };
 
 // Interior pixels of one output row from three source rows; restrict lets the compiler vectorize

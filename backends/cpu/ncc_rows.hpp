@@ -1,14 +1,17 @@
 #pragma once
 // Inner loops of the cpu backend's scoring: one template row (or chunk of sparse samples) of one
 // particle. Positions follow scoring.hpp exactly: px = ax[k] + bdv with ax[k] = tx + a*du[k]
-// precomputed per particle, so each product and sum is rounded as the contract says.
+// precomputed per particle, so each product and sum is rounded as the contract says; values and
+// sums are the exact integers of fixed_point.hpp.
 #include <cstddef>
 #include <cstdint>
 
 namespace trn::cpu {
 
+// Exact integer sums of one row. The "inside" samplers leave n, st and stt at 0: every sample is
+// valid there, so the caller takes them from the template (per-plan totals).
 struct RowSums {
-    float n = 0, sj = 0, sjj = 0, sjt = 0, st = 0, stt = 0;
+    std::int64_t n = 0, sj = 0, sjj = 0, sjt = 0, st = 0, stt = 0;
 };
 
 struct MapPixels {
@@ -24,7 +27,7 @@ struct RowInput {
     float bdv, ddv;     // b*dv and d*dv for a dense row
     const float* bdvs;  // per-sample b*dv (sparse), or nullptr
     const float* ddvs;
-    const float* t;     // centred template values
+    const std::int32_t* t;  // quantized template values (ScoringPlan::quantized)
     int count;
     // Sparse chunks on the AVX2 path: positions straight from du/dv and the affine, in registers
     // (same operations, same rounding) instead of from precomputed arrays. ax/ay unused then.
@@ -34,12 +37,12 @@ struct RowInput {
 };
 
 // Checked = samples may fall outside the map (masked out); unchecked = all known inside.
-RowSums sample_row_checked(const MapPixels& m, const RowInput& row, float shift);
-RowSums sample_row_inside(const MapPixels& m, const RowInput& row, float shift);
+RowSums sample_row_checked(const MapPixels& m, const RowInput& row);
+RowSums sample_row_inside(const MapPixels& m, const RowInput& row);
 
-// AVX2 version of sample_row_inside (bit-identical sample values; sums in 8 lanes).
+// AVX2 version of sample_row_inside (the same integers; interpolation as int16 multiply-adds).
 // Only call when avx2_available() and the map has fewer than 2^31 pixels.
-RowSums sample_row_inside_avx2(const MapPixels& m, const RowInput& row, float shift);
+RowSums sample_row_inside_avx2(const MapPixels& m, const RowInput& row);
 bool avx2_available();
 
 }  // namespace trn::cpu

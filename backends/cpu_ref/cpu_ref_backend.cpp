@@ -1,11 +1,14 @@
 // cpu-ref: the test oracle. Written to be obviously correct, not fast: every sample is taken one
-// by one, statistics are two-pass in double, nothing is shared with the optimized paths except the
-// sample choice (ScoringPlan points), which is part of the contract.
+// by one exactly as scoring.hpp defines it and added to 64-bit integer sums; nothing is shared with
+// the optimized paths except the contract itself (ScoringPlan's samples and quantized template,
+// fixed_point.hpp's weight and bilinear formula, finalize_score).
 #include "cpu_ref_backend.hpp"
 
 #include <chrono>
 #include <cmath>
 #include <vector>
+
+#include "trn/fixed_point.hpp"
 
 namespace trn {
 namespace {
@@ -21,8 +24,9 @@ public:
 };
 
 // Position and bilinear value exactly as scoring.hpp specifies; volatile stores keep the compiler
-// from fusing multiply-adds so each product and sum is rounded to float on its own.
-bool sample(const RefMap& m, const Affine& A, float du, float dv, float& value) {
+// from fusing multiply-adds so each product and sum is rounded to float on its own. `value` is the
+// map value in 1/128 grey levels.
+bool sample(const RefMap& m, const Affine& A, float du, float dv, std::int64_t& value) {
     volatile float t1 = A.a * du, t2 = A.b * dv, t3 = A.c * du, t4 = A.d * dv;
     volatile float sx = A.tx + t1, sy = A.ty + t3;
     const float px = sx + t2, py = sy + t4;
@@ -30,12 +34,9 @@ bool sample(const RefMap& m, const Affine& A, float du, float dv, float& value) 
     int x0 = static_cast<int>(std::floor(px)), y0 = static_cast<int>(std::floor(py));
     if (x0 > m.width() - 2) x0 = m.width() - 2;
     if (y0 > m.height() - 2) y0 = m.height() - 2;
-    const float fx = px - float(x0), fy = py - float(y0);
-    const float m00 = m.at(x0, y0), m10 = m.at(x0 + 1, y0), m01 = m.at(x0, y0 + 1), m11 = m.at(x0 + 1, y0 + 1);
-    volatile float dtop = fx * (m10 - m00), dbot = fx * (m11 - m01);
-    volatile float top = m00 + dtop, bot = m01 + dbot;
-    volatile float dv2 = fy * (bot - top);
-    value = top + dv2;
+    const float fx = px - float(x0), fy = py - float(y0);  // exact (Sterbenz)
+    value = fixed::bilinear(m.at(x0, y0), m.at(x0 + 1, y0), m.at(x0, y0 + 1), m.at(x0 + 1, y0 + 1), fixed::weight(fx),
+                            fixed::weight(fy));
     return true;
 }
 
@@ -55,7 +56,7 @@ private:
 class CpuRefBackend final : public Backend {
 public:
     CpuRefBackend() {
-        info_ = {"cpu-ref", "cpu-ref", "naive C++ reference", "cpu", "trnkit", "double accumulation, single thread"};
+        info_ = {"cpu-ref", "cpu-ref", "naive C++ reference", "cpu", "trnkit", "exact integer sums, single thread"};
     }
     const DeviceInfo& info() const override { return info_; }
 
@@ -70,54 +71,24 @@ protected:
         const Timer timer(times ? &times->execute_ms : nullptr);
         const RefMap& map = static_cast<const RefMap&>(storage);
         const std::size_t count = plan.sample_count();
-        std::vector<double> t, i;
-        t.reserve(count);
-        i.reserve(count);
         for (std::size_t p = 0; p < poses.size(); ++p) {
             const Affine A = pose_to_affine(poses[p]);
-            t.clear();
-            i.clear();
+            ParticleSums sums;
             for (std::size_t k = 0; k < count; ++k) {
                 const int u = plan.dense ? int(k % plan.width) : plan.points[k].u;
                 const int v = plan.dense ? int(k / plan.width) : plan.points[k].v;
-                float value;
-                if (!sample(map, A, float(u) - plan.cx, float(v) - plan.cy, value)) continue;
-                // The template value itself: centred value + mean recovers it to double precision.
-                t.push_back(double(plan.centered[k]) + plan.template_mean);
-                i.push_back(value);
+                std::int64_t i;
+                if (!sample(map, A, float(u) - plan.cx, float(v) - plan.cy, i)) continue;
+                const std::int64_t t = plan.quantized[k];
+                sums.n += 1;
+                sums.sj += i;
+                sums.sjj += i * i;
+                sums.sjt += i * t;
+                sums.st += t;
+                sums.stt += t * t;
             }
-            out[p] = score_pairs(t, i, plan.min_valid_samples(), plan.template_mean);
+            out[p] = finalize_score(sums, plan);
         }
-    }
-
-    static ParticleScore score_pairs(const std::vector<double>& t, const std::vector<double>& i, std::uint32_t min_valid,
-                                     double template_mean) {
-        ParticleScore r;
-        const std::size_t n = t.size();
-        r.valid_samples = static_cast<std::uint32_t>(n);
-        if (n == 0 || n < min_valid) {
-            r.flags = kTooFewSamples;
-            return r;
-        }
-        double mt = 0, mi = 0;
-        for (std::size_t k = 0; k < n; ++k) mt += t[k], mi += i[k];
-        mt /= double(n);
-        mi /= double(n);
-        double stt = 0, sii = 0, sti = 0, rtt = 0, rii = 0, rti = 0, rdd = 0;
-        for (std::size_t k = 0; k < n; ++k) {
-            const double a = t[k] - mt, b = i[k] - mi;
-            stt += a * a, sii += b * b, sti += a * b;
-            rtt += t[k] * t[k], rii += i[k] * i[k], rti += t[k] * i[k];
-            rdd += (t[k] - i[k]) * (t[k] - i[k]);
-        }
-        if (is_flat(stt, double(n), mt - template_mean)) r.flags |= kFlatTemplate;  // mean of the centred values
-        if (is_flat(sii, double(n), mi)) r.flags |= kFlatPatch;
-        if (r.flags) return r;
-        const double norm = std::sqrt(rtt * rii);
-        r.ncc = static_cast<float>(sti / std::sqrt(stt * sii));
-        r.cc = static_cast<float>(rti / norm);
-        r.ssd = static_cast<float>(1.0 - rdd / norm);
-        return r;
     }
 
     void do_sobel(GrayView src, Int16View gx, Int16View gy, PhaseTimes* times) override {

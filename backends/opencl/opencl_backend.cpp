@@ -25,7 +25,7 @@ namespace {
 constexpr std::size_t kGpuWorkGroup = 256;
 constexpr std::size_t kCpuWorkGroup = 1;
 constexpr std::size_t kSobelPad = 16;  // TRN_SOBEL_PAD in sobel3x3.cl: bytes left of each source row
-constexpr int kSumsPerParticle = 8;    // n, sj, sjj, sjt, st, stt, shift, (pad): see ncc_score.cl
+constexpr int kSumsPerParticle = 6;    // n, sj, sjj, sjt, st, stt as longs: see ncc_score.cl
 constexpr int kAffinePerParticle = 8;  // a, b, c, d, tx, ty, (pad, pad)
 
 std::size_t floor_pow2(std::size_t n) {
@@ -181,7 +181,7 @@ protected:
     void do_sobel(GrayView src, Int16View gx, Int16View gy, PhaseTimes* times) override;
 
 private:
-    // Uploads the plan's centred template (and sparse offsets) unless the device already holds
+    // Uploads the plan's quantized template (and sparse offsets) unless the device already holds
     // exactly these values: a particle filter scores many pose batches against one frame.
     void upload_template(const ScoringPlan& plan, UploadEvents& uploads);
 
@@ -195,26 +195,25 @@ private:
     ProgramHandle ncc_program_, sobel_program_;
     KernelHandle dense_, sparse_, sobel_, sobel_columns_;
 
-    DeviceBuffer affines_, sums_, centered_, offsets_;
+    DeviceBuffer affines_, sums_, quantized_, offsets_;
     DeviceBuffer sobel_src_, sobel_gx_, sobel_gy_;
     std::vector<float> host_affines_, host_offsets_;
-    std::vector<cl_uint> host_sums_;
-    std::vector<float> device_centered_, device_offsets_;  // what the device buffers hold now
+    std::vector<cl_long> host_sums_;
+    std::vector<std::int32_t> device_quantized_;  // what the device buffers hold now
+    std::vector<float> device_offsets_;
 };
 
 void OpenClBackend::upload_template(const ScoringPlan& plan, UploadEvents& uploads) {
     const std::size_t count = plan.sample_count();
-    if (centered_.ensure(context_.get(), count * sizeof(float), CL_MEM_READ_ONLY, max_alloc_, "centred template"))
-        device_centered_.clear();
-    const bool same_values = device_centered_.size() == count &&
-                             std::memcmp(device_centered_.data(), plan.centered.data(), count * sizeof(float)) == 0;
-    if (!same_values) {
+    if (quantized_.ensure(context_.get(), count * sizeof(cl_int), CL_MEM_READ_ONLY, max_alloc_, "quantized template"))
+        device_quantized_.clear();
+    if (device_quantized_ != plan.quantized) {
         cl_event e = nullptr;
-        check(clEnqueueWriteBuffer(queue_.get(), centered_.get(), CL_FALSE, 0, count * sizeof(float), plan.centered.data(), 0,
-                                   nullptr, &e),
-              [&] { return "clEnqueueWriteBuffer(centred template) on " + info_.name; });
+        check(clEnqueueWriteBuffer(queue_.get(), quantized_.get(), CL_FALSE, 0, count * sizeof(cl_int), plan.quantized.data(),
+                                   0, nullptr, &e),
+              [&] { return "clEnqueueWriteBuffer(quantized template) on " + info_.name; });
         uploads.add(e);
-        device_centered_.assign(plan.centered.begin(), plan.centered.end());
+        device_quantized_ = plan.quantized;
     }
     if (plan.dense) return;
 
@@ -251,7 +250,7 @@ void OpenClBackend::do_score(const MapStorage& storage, const ScoringPlan& plan,
         dst[0] = A.a, dst[1] = A.b, dst[2] = A.c, dst[3] = A.d, dst[4] = A.tx, dst[5] = A.ty, dst[6] = 0, dst[7] = 0;
     }
     affines_.ensure(context_.get(), n * kAffinePerParticle * sizeof(float), CL_MEM_READ_ONLY, max_alloc_, "pose affines");
-    sums_.ensure(context_.get(), n * kSumsPerParticle * sizeof(cl_uint), CL_MEM_WRITE_ONLY, max_alloc_, "particle sums");
+    sums_.ensure(context_.get(), n * kSumsPerParticle * sizeof(cl_long), CL_MEM_WRITE_ONLY, max_alloc_, "particle sums");
 
     UploadEvents uploads;
     upload_template(plan, uploads);
@@ -261,7 +260,7 @@ void OpenClBackend::do_score(const MapStorage& storage, const ScoringPlan& plan,
           [&] { return "clEnqueueWriteBuffer(pose affines) on " + info_.name; });
     uploads.add(e);
 
-    const cl_mem map_mem = map.mem(), affines = affines_.get(), centered = centered_.get(), sums = sums_.get();
+    const cl_mem map_mem = map.mem(), affines = affines_.get(), quantized = quantized_.get(), sums = sums_.get();
     const cl_int map_w = map.width(), map_h = map.height();
     cl_kernel k = plan.dense ? dense_.get() : sparse_.get();
     const char* kname = plan.dense ? "ncc_score_dense" : "ncc_score_sparse";
@@ -269,7 +268,7 @@ void OpenClBackend::do_score(const MapStorage& storage, const ScoringPlan& plan,
     set_arg(k, 1, map_w, kname);
     set_arg(k, 2, map_h, kname);
     set_arg(k, 3, affines, kname);
-    set_arg(k, 4, centered, kname);
+    set_arg(k, 4, quantized, kname);
     if (plan.dense) {
         set_arg(k, 5, cl_int(plan.width), kname);
         set_arg(k, 6, cl_int(plan.height), kname);
@@ -288,20 +287,14 @@ void OpenClBackend::do_score(const MapStorage& storage, const ScoringPlan& plan,
     EventHandle execute(e);
 
     host_sums_.resize(n * kSumsPerParticle);
-    check(clEnqueueReadBuffer(queue_.get(), sums, CL_TRUE, 0, n * kSumsPerParticle * sizeof(cl_uint), host_sums_.data(), 0,
+    check(clEnqueueReadBuffer(queue_.get(), sums, CL_TRUE, 0, n * kSumsPerParticle * sizeof(cl_long), host_sums_.data(), 0,
                               nullptr, &e),
           [&] { return "clEnqueueReadBuffer(particle sums) on " + info_.name; });
     EventHandle download(e);
 
     for (std::size_t i = 0; i < n; ++i) {
-        const cl_uint* s = host_sums_.data() + i * kSumsPerParticle;
-        auto f = [&](int q) {
-            float v;
-            std::memcpy(&v, &s[q], sizeof v);
-            return double(v);
-        };
-        const ParticleSums sums_i{double(s[0]), f(1), f(2), f(3), f(4), f(5), f(6)};
-        out[i] = finalize_score(sums_i, plan);
+        const cl_long* s = host_sums_.data() + i * kSumsPerParticle;
+        out[i] = finalize_score(ParticleSums{s[0], s[1], s[2], s[3], s[4], s[5]}, plan);
     }
     if (times) {
         for (int i = 0; i < uploads.count; ++i) times->upload_ms += event_ms(uploads.events[i].get());

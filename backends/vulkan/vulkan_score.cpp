@@ -15,11 +15,15 @@ struct ScorePush {  // matches the push_constant block of ncc_score.comp
 };
 static_assert(sizeof(ScorePush) == 6 * 4);
 
-struct GroupSums {  // matches GroupSums in ncc_score.comp (std430)
-    std::uint32_t n;
-    float sj, sjj, sjt, st, stt, shift, unused;
+struct GroupSums {  // matches GroupSums in ncc_score.comp (std430): 64-bit sums as (low, high) words
+    std::uint32_t n, unused;
+    std::uint32_t sj[2], sjj[2], sjt[2], st[2], stt[2];
 };
-static_assert(sizeof(GroupSums) == 32);
+static_assert(sizeof(GroupSums) == 48);
+
+std::int64_t join(const std::uint32_t (&w)[2]) {
+    return static_cast<std::int64_t>((std::uint64_t(w[1]) << 32) | w[0]);
+}
 
 }  // namespace
 
@@ -44,13 +48,13 @@ void VulkanBackend::do_score(const MapStorage& storage, const ScoringPlan& plan,
         throw Error("score: a " + std::to_string(plan.width) + "x" + std::to_string(plan.height) + " template is too large for " + info_.name);
 
     const auto t0 = Clock::now();
-    // Sample table: centred template value bits [S], then for sparse plans the pixel index v*W+u [S].
+    // Sample table: quantized template values [S], then for sparse plans the pixel index v*W+u [S].
     const std::size_t table_words = plan.dense ? samples : 2 * samples;
     samples_->ensure(table_words * sizeof(std::uint32_t));
     affines_->ensure(6 * particles * sizeof(float));
     sums_->ensure(particles * sizeof(GroupSums));
     auto* table = static_cast<std::uint32_t*>(samples_->host());
-    std::memcpy(table, plan.centered.data(), samples * sizeof(float));
+    std::memcpy(table, plan.quantized.data(), samples * sizeof(std::uint32_t));
     if (!plan.dense)
         for (std::size_t k = 0; k < samples; ++k)
             table[samples + k] = static_cast<std::uint32_t>(plan.points[k].v) * static_cast<std::uint32_t>(plan.width) +
@@ -102,8 +106,7 @@ void VulkanBackend::do_score(const MapStorage& storage, const ScoringPlan& plan,
     const GroupSums* sums = static_cast<const GroupSums*>(sums_->host());
     for (std::size_t i = 0; i < particles; ++i) {
         const GroupSums& g = sums[i];
-        const ParticleSums s{double(g.n), g.sj, g.sjj, g.sjt, g.st, g.stt, g.shift};
-        out[i] = finalize_score(s, plan);
+        out[i] = finalize_score(ParticleSums{g.n, join(g.sj), join(g.sjj), join(g.sjt), join(g.st), join(g.stt)}, plan);
     }
     if (times) {
         times->upload_ms = upload_ms + recorder_->elapsed_ms(0, 1);

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <iomanip>
 #include <span>
 #include <vector>
 
@@ -11,7 +12,6 @@
 
 namespace trn::conformance {
 
-inline constexpr double kScoreTolerance = 1e-4;
 inline constexpr int kGuard = 16;  // sentinel elements on each side of every output
 
 // Scores for n particles with kGuard sentinel entries before and after.
@@ -38,7 +38,11 @@ private:
     std::size_t n_;
 };
 
-// Runs the same scoring on both backends and compares every particle. Returns the dut scores.
+// The same bits: every backend evaluates the exact integer definition of scoring.hpp.
+inline bool same_bits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+// Runs the same scoring on both backends and compares every particle for equality (scores bit for
+// bit, counts, flags). Returns the dut scores.
 inline std::vector<ParticleScore> score_and_compare(Backend& dut, Backend& ref, GrayView map, const TemplateView& templ,
                                                     std::span<const Pose> poses, const ScoreOptions& options) {
     const ScoringPlan plan = make_scoring_plan(templ, options);
@@ -50,11 +54,11 @@ inline std::vector<ParticleScore> score_and_compare(Backend& dut, Backend& ref, 
     for (std::size_t i = 0; i < poses.size(); ++i) {
         const ParticleScore &g = got.scores()[i], &w = want.scores()[i];
         const bool ok = g.valid_samples == w.valid_samples && g.flags == w.flags && std::isfinite(g.ncc) &&
-                        std::isfinite(g.cc) && std::isfinite(g.ssd) && std::fabs(g.ncc - w.ncc) <= kScoreTolerance &&
-                        std::fabs(g.cc - w.cc) <= kScoreTolerance && std::fabs(g.ssd - w.ssd) <= kScoreTolerance;
+                        std::isfinite(g.cc) && std::isfinite(g.ssd) && same_bits(g.ncc, w.ncc) && same_bits(g.cc, w.cc) &&
+                        same_bits(g.ssd, w.ssd);
         if (!ok && reported++ < 5) {
             const Pose& p = poses[i];
-            ADD_FAILURE() << "particle " << i << " pose (" << p.x << ", " << p.y << ", yaw " << p.yaw << ", scale " << p.scale
+            ADD_FAILURE() << std::setprecision(9) << "particle " << i << " pose (" << p.x << ", " << p.y << ", yaw " << p.yaw << ", scale " << p.scale
                           << ") map " << map.width << "x" << map.height << " template " << templ.width << "x" << templ.height
                           << "\n  " << dut.info().name << ": ncc " << g.ncc << " cc " << g.cc << " ssd " << g.ssd << " valid "
                           << g.valid_samples << " flags " << g.flags << "\n  cpu-ref: ncc " << w.ncc << " cc " << w.cc << " ssd "

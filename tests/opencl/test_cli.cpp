@@ -74,9 +74,9 @@ TEST_F(OpenClCli, ScoreMatchesTheCpuBackend) {
     EXPECT_NEAR(ocl[0].ncc, 1.0, 1e-4);
     EXPECT_NE(ocl.back().flags, 0u);
     for (std::size_t i = 0; i < cpu.size(); ++i) {
-        EXPECT_NEAR(ocl[i].ncc, cpu[i].ncc, 1e-4) << i;
-        EXPECT_NEAR(ocl[i].cc, cpu[i].cc, 1e-4) << i;
-        EXPECT_NEAR(ocl[i].ssd, cpu[i].ssd, 1e-4) << i;
+        EXPECT_EQ(ocl[i].ncc, cpu[i].ncc) << i;  // exact scoring: the same printed digits
+        EXPECT_EQ(ocl[i].cc, cpu[i].cc) << i;
+        EXPECT_EQ(ocl[i].ssd, cpu[i].ssd) << i;
         EXPECT_EQ(ocl[i].valid, cpu[i].valid) << i;
         EXPECT_EQ(ocl[i].flags, cpu[i].flags) << i;
     }

@@ -51,7 +51,7 @@ inline std::vector<Pose> random_poses(int n, int map_w, int map_h, std::uint32_t
     return poses;
 }
 
-// Scores on both backends; checks the conformance rules (1e-4 on scores, counts and flags exact).
+// Scores on both backends; checks the conformance rule: scores, counts and flags equal.
 inline std::vector<ParticleScore> expect_scores_match(Backend& dut, Backend& ref, GrayView map, GrayView templ,
                                                       const std::vector<Pose>& poses, const ScoreOptions& options) {
     std::vector<ParticleScore> got(poses.size()), want(poses.size());
@@ -62,9 +62,9 @@ inline std::vector<ParticleScore> expect_scores_match(Backend& dut, Backend& ref
         SCOPED_TRACE("pose " + std::to_string(i));
         EXPECT_EQ(got[i].valid_samples, want[i].valid_samples);
         EXPECT_EQ(got[i].flags, want[i].flags);
-        EXPECT_NEAR(got[i].ncc, want[i].ncc, 1e-4);
-        EXPECT_NEAR(got[i].cc, want[i].cc, 1e-4);
-        EXPECT_NEAR(got[i].ssd, want[i].ssd, 1e-4);
+        EXPECT_EQ(got[i].ncc, want[i].ncc);
+        EXPECT_EQ(got[i].cc, want[i].cc);
+        EXPECT_EQ(got[i].ssd, want[i].ssd);
         valid += want[i].valid();
     }
     EXPECT_GT(valid, 0) << "the case should have valid particles";

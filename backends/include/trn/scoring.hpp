@@ -13,6 +13,15 @@
 //   Map pixel centres are at integer coordinates; sampling is bilinear. A sample is valid when
 //   0 <= px <= mapW-1 and 0 <= py <= mapH-1; other samples are skipped and counted.
 //
+// Exact integer arithmetic (the same bits on every backend; constants in fixed_point.hpp):
+//   x0 = min(floor(px), mapW-2), fx = px - x0 (exact in float), wx = int(fx*128 + 0.5f) in 0..128
+//   (7-bit weights; likewise y0, wy), and the map value in 1/128 grey levels
+//       I = ((m00*(128-wx) + m10*wx)*(128-wy) + (m01*(128-wx) + m11*wx)*wy + 64) >> 7
+//   (0..32640; trn::fixed::bilinear). Template values are quantized once on the host (ScoringPlan:
+//   T = round((t - offset) * 2^k), |T| <= 32767). Every backend sums n, I, I^2, I*T, T, T^2 over the
+//   valid samples in 64-bit integers (exact, so summation order does not matter) and the host turns
+//   the sums into scores (finalize_score, 128-bit products), so every backend returns the same bits.
+//
 // Scores over the valid samples (T = template, I = sampled map, ' = minus the mean):
 //   ncc = sum T'I' / sqrt(sum T'^2 * sum I'^2)            (Pearson, dissertation eq. 2.15)
 //   cc  = sum T I  / sqrt(sum T^2  * sum I^2)             (eq. 2.14)
@@ -20,10 +29,9 @@
 //
 // Invalid particles get every score 0 and a non-zero `flags` (never NaN):
 //   too few samples: valid_samples < min_valid_fraction * sample count;
-//   flat patch / flat template: variance over the valid samples <= kFlatVariance + kFlatRelative *
-//   mean^2 (grey levels^2; the template's mean is that of its centred values), which leaves ncc
-//   undefined (cc and ssd are then 0 too, for one simple rule). The relative term absorbs float
-//   rounding of sums (e.g. a single valid sample), so every backend draws the line in the same place.
+//   flat patch / flat template: variance over the valid samples <= kFlatVariance (grey levels^2,
+//   computed from the exact integer sums), which leaves ncc undefined (cc and ssd are then 0 too,
+//   for one simple rule).
 #include <cstdint>
 #include <vector>
 
@@ -75,11 +83,8 @@ enum ScoreFlags : std::uint32_t {
 
 // Variance (in the template's / map's grey-level units squared) at or below which an image is flat.
 inline constexpr double kFlatVariance = 1e-4;
-inline constexpr double kFlatRelative = 1e-6;
-// The flatness rule, given n * variance, n and the mean.
-inline bool is_flat(double n_times_var, double n, double mean) {
-    return n_times_var <= n * (kFlatVariance + kFlatRelative * mean * mean);
-}
+// The flatness rule, given n * variance and n.
+inline bool is_flat(double n_times_var, double n) { return n_times_var <= n * kFlatVariance; }
 
 struct ParticleScore {
     float ncc = 0;

@@ -23,11 +23,16 @@ struct ScoringPlan {
     float cx = 0, cy = 0;           // template centre
     bool dense = true;              // all W*H pixels in row-major order, `points` empty
     std::vector<SamplePoint> points;  // sparse: the sampled template pixels (sorted row-major)
-    std::vector<float> centered;    // template value minus template_mean, one per sample, in sample order
+    // Template value t of each sample (in sample order) in fixed point: T = round((t - template_offset)
+    // * 2^template_exponent), |T| <= fixed::kMaxTemplate, so t ~ template_offset + T / 2^exponent
+    // (exact for 8-bit templates: offset is an integer and exponent >= 7).
+    std::vector<std::int32_t> quantized;
+    double template_offset = 0;     // an integer: the template mean, rounded
+    int template_exponent = 7;      // the largest k <= 16 that keeps |T| <= 32767
     double template_mean = 0;       // mean over all samples
     double min_valid_fraction = 0.9;
 
-    std::size_t sample_count() const { return centered.size(); }
+    std::size_t sample_count() const { return quantized.size(); }
     // Smallest valid-sample count for a valid particle.
     std::uint32_t min_valid_samples() const;
 };
@@ -38,15 +43,14 @@ ScoringPlan make_scoring_plan(const TemplateView& templ, const ScoreOptions& opt
 // The deterministic sparse pixel choice used by Sampling::Kind::Random, exposed for tests.
 std::vector<SamplePoint> random_sample_points(int width, int height, double fraction, std::uint64_t seed);
 
-// Per-particle sums an optimized backend accumulates over its valid samples, with
-// J = sampled map value - shift (shift: the map value at the pose centre, which keeps float sums
-// well conditioned) and T' = plan.centered.
+// Per-particle sums every backend accumulates over its valid samples, exactly: J = the map value I
+// in 1/128 grey levels (fixed::bilinear), T = plan.quantized. int64 cannot overflow (fixed_point.hpp).
 struct ParticleSums {
-    double n = 0, sj = 0, sjj = 0, sjt = 0, st = 0, stt = 0;
-    double shift = 0;
+    std::int64_t n = 0, sj = 0, sjj = 0, sjt = 0, st = 0, stt = 0;
 };
 
-// Turns the sums into scores and flags by the rules in scoring.hpp.
+// Turns the sums into scores and flags by the rules in scoring.hpp (128-bit integer products, so
+// cancellation costs nothing; the same bits for the same sums).
 ParticleScore finalize_score(const ParticleSums& s, const ScoringPlan& plan);
 
 }  // namespace trn
