@@ -121,7 +121,7 @@ LocalizationResult run_localization(FlightSource& source, ParticleFilter& filter
         row.particles = rep.particles, row.off_map = rep.off_map;
         row.score_ms = rep.score_ms, row.step_ms = step_s * 1000;
         row.odometry_lost = rep.odometry_lost, row.frame_missing = rep.frame_missing, row.reinitialised = rep.reinitialised;
-        row.lock_contrast = rep.lock.contrast, row.lock_drift_m = rep.lock.drift_m, row.lock_lost = rep.lock.lost;
+        row.lock = rep.lock;
         result.rows.push_back(row);
         if (progress) progress(result.rows.size(), hint);
     }
