@@ -70,7 +70,12 @@ TEST(Localization, SummaryJsonHasTheIssueKeys) {
 // Splits one CSV line (no quoting in this file: every cell is a number, a flag or one word).
 std::vector<std::string> cells(const std::string& line) {
     std::vector<std::string> out(1);
-    for (char ch : line) ch == ',' ? out.emplace_back() : out.back().push_back(ch);
+    for (char ch : line) {
+        if (ch == ',')
+            out.emplace_back();
+        else
+            out.back().push_back(ch);
+    }
     return out;
 }
 
