@@ -18,7 +18,7 @@
 namespace trn::experiments {
 namespace fs = std::filesystem;
 
-std::vector<std::string> study_names() { return {"metrics", "heading", "sampling", "conversion", "robustness", "odometry"}; }
+std::vector<std::string> study_names() { return {"metrics", "heading", "sampling", "conversion", "robustness", "odometry", "odometry-wind"}; }
 
 namespace {
 
@@ -28,7 +28,8 @@ std::unique_ptr<Study> make_study(const std::string& name) {
     if (name == "sampling") return make_sampling_study();
     if (name == "conversion") return make_conversion_study();
     if (name == "robustness") return make_robustness_study();
-    if (name == "odometry") return make_odometry_study();
+    if (name == "odometry") return make_odometry_study(false);
+    if (name == "odometry-wind") return make_odometry_study(true);
     std::string names;
     for (const auto& n : study_names()) names += " " + n;
     throw Error("experiment: unknown study '" + name + "' (one of:" + names + ")");

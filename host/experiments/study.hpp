@@ -48,6 +48,6 @@ std::unique_ptr<Study> make_heading_study();
 std::unique_ptr<Study> make_sampling_study();
 std::unique_ptr<Study> make_conversion_study();
 std::unique_ptr<Study> make_robustness_study();
-std::unique_ptr<Study> make_odometry_study();
+std::unique_ptr<Study> make_odometry_study(bool wind);  // the presets or their '-wind' twins
 
 }  // namespace trn::experiments

@@ -35,6 +35,17 @@ std::ostream& operator<<(std::ostream& os, LatLonCell c) {
     return os << buf;
 }
 bool has_errors(const LocalizationSummary& s) { return std::isfinite(s.filter_mean_error_m); }
+
+// The lock monitor's verdict in one word, the strongest first (a lost step is usually also weak
+// or inconsistent). assess() always measures the drift, so no drift = the step was not assessed.
+const char* lock_state(const LockReport& l) {
+    if (std::isnan(l.drift_m)) return "none";
+    if (l.lost) return "lost";
+    if (l.confident) return "fix";
+    if (l.inconsistent) return "inconsistent";
+    if (l.weak) return "weak";
+    return "ok";
+}
 }  // namespace
 
 void write_rows_csv(const std::string& path, const std::vector<LocalizationRow>& rows) {
@@ -43,13 +54,18 @@ void write_rows_csv(const std::string& path, const std::vector<LocalizationRow>&
     out.precision(10);
     out << "frame,time_s,distance_m,truth_x,truth_y,odometry_x,odometry_y,estimate_x,estimate_y,estimate_yaw,best_x,best_y,"
            "error_m,odometry_error_m,particles,off_map,score_ms,step_ms,odometry_lost,frame_missing,reinitialised,tilt_deg,too_oblique,"
-           "est_lat,est_lon\n";
-    for (const LocalizationRow& r : rows)
+           "est_lat,est_lon,lock_state,lock_contrast,lock_drift_m,lock_drift_bound_m,lock_lost_events,lock_widen_radius_m\n";
+    std::size_t lost_events = 0;  // running count, so a plot or a grep sees when each loss happened
+    for (const LocalizationRow& r : rows) {
+        lost_events += r.lock.lost;
         out << r.frame << ',' << r.time_s << ',' << r.distance_m << ',' << Cell{r.truth_x} << ',' << Cell{r.truth_y} << ',' << r.odometry_x << ','
             << r.odometry_y << ',' << r.estimate_x << ',' << r.estimate_y << ',' << r.estimate_yaw << ',' << r.best_x << ',' << r.best_y
             << ',' << Cell{r.error_m} << ',' << Cell{r.odometry_error_m} << ',' << r.particles << ',' << r.off_map << ',' << r.score_ms << ','
             << r.step_ms << ',' << r.odometry_lost << ',' << r.frame_missing << ',' << r.reinitialised << ',' << r.tilt_deg << ','
-            << r.too_oblique << ',' << LatLonCell{r.estimate_lat} << ',' << LatLonCell{r.estimate_lon} << '\n';
+            << r.too_oblique << ',' << LatLonCell{r.estimate_lat} << ',' << LatLonCell{r.estimate_lon} << ',' << lock_state(r.lock) << ','
+            << Cell{r.lock.contrast} << ',' << Cell{r.lock.drift_m} << ',' << Cell{r.lock.drift_bound_m} << ',' << lost_events << ','
+            << (r.lock.lost ? r.lock.widen_radius_m : 0.0) << '\n';
+    }
     file.commit();
 }
 

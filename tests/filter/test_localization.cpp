@@ -1,10 +1,13 @@
 // Summary statistics and the files a run writes.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
 
 #include "trn/filter/localization.hpp"
 #include "trn/filter/report.hpp"
@@ -62,6 +65,60 @@ TEST(Localization, SummaryJsonHasTheIssueKeys) {
     std::getline(csv, header);
     EXPECT_NE(header.find("error_m"), std::string::npos);
     std::filesystem::remove_all(dir);
+}
+
+// Splits one CSV line (no quoting in this file: every cell is a number, a flag or one word).
+std::vector<std::string> cells(const std::string& line) {
+    std::vector<std::string> out(1);
+    for (char ch : line) {
+        if (ch == ',')
+            out.emplace_back();
+        else
+            out.back().push_back(ch);
+    }
+    return out;
+}
+
+TEST(Localization, RowsCsvHasTheLockMonitorsColumns) {
+    std::vector<LocalizationRow> rows = synthetic_rows();
+    rows[0].lock = {};  // not assessed (monitor off or no frame)
+    rows[1].lock.contrast = 7.5, rows[1].lock.drift_m = 12, rows[1].lock.drift_bound_m = 90, rows[1].lock.confident = true;
+    rows[2].lock.contrast = 1.5, rows[2].lock.drift_m = 20, rows[2].lock.drift_bound_m = 95, rows[2].lock.weak = true;
+    rows[3].lock.contrast = 2.0, rows[3].lock.drift_m = 130, rows[3].lock.drift_bound_m = 100, rows[3].lock.weak = true;
+    rows[3].lock.inconsistent = true, rows[3].lock.lost = true, rows[3].lock.widen_radius_m = 100;
+    rows[4].lock.contrast = 4.0, rows[4].lock.drift_m = 30, rows[4].lock.drift_bound_m = 104, rows[4].lock.inconsistent = true;
+    const std::string dir = (std::filesystem::temp_directory_path() / "trn_filter_lock_csv_test").string();
+    std::filesystem::create_directories(dir);
+    write_rows_csv(dir + "/rows.csv", rows);
+    std::ifstream csv(dir + "/rows.csv");
+    std::string line;
+    std::getline(csv, line);
+    const std::vector<std::string> header = cells(line);
+    auto column = [&](const std::string& name) {
+        const auto it = std::find(header.begin(), header.end(), name);
+        EXPECT_NE(it, header.end()) << name << " missing from " << line;
+        return static_cast<std::size_t>(it - header.begin());
+    };
+    const std::size_t state = column("lock_state"), contrast = column("lock_contrast"), drift = column("lock_drift_m"),
+                      bound = column("lock_drift_bound_m"), events = column("lock_lost_events"), radius = column("lock_widen_radius_m");
+    ASSERT_FALSE(HasFailure()) << "a lock column is missing";
+    std::vector<std::vector<std::string>> table;
+    while (std::getline(csv, line)) table.push_back(cells(line));
+    std::filesystem::remove_all(dir);
+    ASSERT_EQ(table.size(), rows.size());
+    for (const auto& row : table) ASSERT_EQ(row.size(), header.size());
+    const std::vector<std::string> states{"none", "fix", "weak", "lost", "inconsistent"};
+    const std::vector<std::string> counts{"0", "0", "0", "1", "1"}, radii{"0", "0", "0", "100", "0"};
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        EXPECT_EQ(table[i][state], states[i]) << "row " << i;
+        EXPECT_EQ(table[i][events], counts[i]) << "row " << i;
+        EXPECT_EQ(table[i][radius], radii[i]) << "row " << i;
+    }
+    EXPECT_EQ(table[0][contrast], "") << "unknown evidence is an empty cell, never nan";
+    EXPECT_EQ(table[0][drift], "");
+    EXPECT_EQ(table[1][contrast], "7.5");
+    EXPECT_EQ(table[3][drift], "130");
+    EXPECT_EQ(table[3][bound], "100");
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
 #pragma once
 // `trnkit experiment NAME`: reproduces one of the dissertation's studies (metrics, heading,
-// sampling, conversion, robustness, odometry). Every study is split into independent jobs; each
+// sampling, conversion, robustness, odometry; odometry-wind on the -wind presets). Every study is split into independent jobs; each
 // job writes one JSON into the output folder (finished jobs are skipped, so runs resume), and
 // `merge` turns the job outputs into Markdown + CSV tables with the dissertation's numbers in
 // adjacent columns, gnuplot plots and a provenance JSON. A merge refuses job outputs whose

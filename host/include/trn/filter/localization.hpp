@@ -24,8 +24,7 @@ struct LocalizationRow {
     std::size_t particles = 0, off_map = 0;
     double score_ms = 0, step_ms = 0;
     bool odometry_lost = false, frame_missing = false, reinitialised = false;
-    double lock_contrast = NAN, lock_drift_m = NAN;  // the lock monitor's evidence (lock_monitor.hpp)
-    bool lock_lost = false;                          // it declared the lock lost and widened the search
+    LockReport lock;  // the lock monitor's evidence and verdict this step (default: not assessed)
     double tilt_deg = 0;                             // of the camera from nadir (measured roll/pitch)
     bool too_oblique = false;                        // tilted beyond the limit: not scored (not frame_missing)
     double estimate_lat = NAN, estimate_lon = NAN;   // degrees, when the map is georeferenced (filled by the caller)

@@ -9,6 +9,10 @@
 
 namespace trn::filter {
 
+// One line per filter step. The lock monitor's columns: lock_state (none = not assessed: monitor
+// off or no frame; else the strongest of lost > fix > inconsistent > weak > ok), lock_contrast,
+// lock_drift_m and lock_drift_bound_m (empty when unknown), lock_lost_events (running count) and
+// lock_widen_radius_m (the widened search's radius on a lost step, else 0).
 void write_rows_csv(const std::string& path, const std::vector<LocalizationRow>& rows);
 
 // Summary keys plus free-form `extra` strings (backend, seed, conversion ...); numbers that are not
