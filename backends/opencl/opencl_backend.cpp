@@ -13,6 +13,7 @@
 
 #include "device_buffer.hpp"
 #include "embedded_kernels.hpp"
+#include "trn/impl/particle_sums.hpp"
 #include "program_cache.hpp"
 
 namespace trn::opencl {

@@ -8,7 +8,9 @@
 
 #include "trn/scoring.hpp"
 #include "trn/template_view.hpp"
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn {
 
 // px = (tx + a*du) + b*dv ; py = (ty + c*du) + d*dv  with du = u - cx, dv = v - cy (all float,
@@ -38,15 +40,5 @@ ScoringPlan make_scoring_plan(const TemplateView& templ, const ScoreOptions& opt
 // The deterministic sparse pixel choice used by Sampling::Kind::Random, exposed for tests.
 std::vector<SamplePoint> random_sample_points(int width, int height, double fraction, std::uint64_t seed);
 
-// Per-particle sums an optimized backend accumulates over its valid samples, with
-// J = sampled map value - shift (shift: the map value at the pose centre, which keeps float sums
-// well conditioned) and T' = plan.centered.
-struct ParticleSums {
-    double n = 0, sj = 0, sjj = 0, sjt = 0, st = 0, stt = 0;
-    double shift = 0;
-};
-
-// Turns the sums into scores and flags by the rules in scoring.hpp.
-ParticleScore finalize_score(const ParticleSums& s, const ScoringPlan& plan);
-
 }  // namespace trn
+TRN_API_END

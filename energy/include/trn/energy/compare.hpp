@@ -9,7 +9,9 @@
 
 #include "trn/energy/run_report.hpp"
 #include "trn/energy/stats.hpp"
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::energy {
 
 struct CompareOptions {
@@ -60,3 +62,4 @@ std::string ttest_table_csv(const Comparison& c);
 std::string comparison_json(const Comparison& c);
 
 }  // namespace trn::energy
+TRN_API_END

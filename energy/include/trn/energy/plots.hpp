@@ -10,7 +10,9 @@
 
 #include "trn/energy/run_report.hpp"
 #include "trn/energy/trace.hpp"
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::energy {
 
 void plot_power_trace(const PowerTrace& trace, const RunReport& run, const std::string& png);
@@ -25,3 +27,4 @@ void plot_histograms(const std::vector<PlotSeries>& series, const std::string& p
 void plot_boxes(const std::vector<PlotSeries>& series, const std::string& png, const std::string& ylabel);
 
 }  // namespace trn::energy
+TRN_API_END

@@ -5,7 +5,9 @@
 #include <cstddef>
 #include <span>
 #include <vector>
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::energy {
 
 struct Summary {
@@ -40,3 +42,4 @@ struct Ratio {
 Ratio ratio_of_means(std::span<const double> a, std::span<const double> b);
 
 }  // namespace trn::energy
+TRN_API_END

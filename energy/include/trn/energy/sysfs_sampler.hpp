@@ -10,7 +10,9 @@
 #include <vector>
 
 #include "trn/energy/trace.hpp"
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::energy {
 
 struct SysfsSource {
@@ -50,3 +52,4 @@ private:
 PowerTrace sample_sysfs(const SysfsSource& source, double period_s, double duration_s);
 
 }  // namespace trn::energy
+TRN_API_END

@@ -6,7 +6,9 @@
 
 #include "trn/filter/localization.hpp"
 #include "trn/io/image_io.hpp"
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::filter {
 
 void write_rows_csv(const std::string& path, const std::vector<LocalizationRow>& rows);
@@ -31,3 +33,4 @@ PlotFiles plot_run(const std::string& folder, const std::vector<LocalizationRow>
                    GrayView map, double metres_per_pixel, const std::string& title);
 
 }  // namespace trn::filter
+TRN_API_END
