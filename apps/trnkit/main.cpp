@@ -5,8 +5,10 @@
 #include <cstdio>
 #include <cstring>
 #include <iostream>
+#include <string>
 
 #include "commands.hpp"
+#include "trn/build_info.hpp"
 #include "trn/error.hpp"
 
 namespace {
@@ -14,6 +16,9 @@ namespace {
 int run(int argc, char** argv) {
     CLI::App app{"trnkit: terrain-relative navigation kit (particle-filter map matching, Sobel, energy)"};
     app.require_subcommand(1);
+    const trn::BuildInfo& build = trn::build_info();
+    app.set_version_flag("--version", "trnkit " + std::string(build.version) + " (commit " + std::string(build.git_commit) + ")",
+                         "Print the version and the git commit it was built from, then exit");
     trn::cli::add_devices_command(app);
     trn::cli::add_sobel_command(app);
     trn::cli::add_score_command(app);
