@@ -52,7 +52,7 @@ TEST(OpenClProgramCache, ColdBuildStoresBinariesAndWarmStartLoadsThem) {
 
     // Both build times are now on record for `trnkit devices --verbose`.
     std::string listed;
-    for (const FamilyStatus& f : default_registry().status())
+    for (const FamilyStatus& f : default_registry().status(cli::backend_options_from_environment()))
         if (f.family == "opencl") listed = f.devices.at(0).details;
     EXPECT_NE(listed.find("cold build"), std::string::npos) << listed;
     EXPECT_EQ(listed.find("not yet measured"), std::string::npos) << listed;
