@@ -4,6 +4,7 @@
 #include <map>
 #include <memory>
 
+#include "backend_env.hpp"
 #include "trn/registry.hpp"
 
 namespace trn::bench {
@@ -11,7 +12,7 @@ namespace trn::bench {
 const std::vector<DeviceEntry>& bench_devices() {
     static const std::vector<DeviceEntry> devices = [] {
         std::vector<DeviceEntry> out;
-        for (const FamilyStatus& s : default_registry().status())
+        for (const FamilyStatus& s : default_registry().status(cli::backend_options_from_environment()))
             for (const DeviceInfo& d : s.devices) out.push_back({d.name, d.family});
         return out;
     }();
@@ -21,7 +22,7 @@ const std::vector<DeviceEntry>& bench_devices() {
 Backend& backend_for(const std::string& name) {
     static std::map<std::string, std::unique_ptr<Backend>> backends;
     auto& slot = backends[name];
-    if (!slot) slot = default_registry().create(name);
+    if (!slot) slot = default_registry().create(name, cli::backend_options_from_environment());
     return *slot;
 }
 

@@ -10,6 +10,7 @@
 #include <numbers>
 #include <random>
 
+#include "backend_env.hpp"
 #include "commands.hpp"
 #include "options.hpp"
 #include "trn/io/image_io.hpp"
@@ -75,13 +76,13 @@ void add_check_command(CLI::App& app) {
                     a->particles, sw, sh);
         std::printf("%-10s %-34s %12s %14s %10s %12s %14s\n", "backend", "device", "score ms", "particles/s", "best", "max |dNCC|",
                     "sobel ms");
-        for (const FamilyStatus& f : default_registry().status()) {
+        for (const FamilyStatus& f : default_registry().status(backend_options_from_environment())) {
             if (f.devices.empty()) {
                 std::printf("%-10s not available: %s\n", f.family.c_str(), f.why_none.c_str());
                 continue;
             }
             for (const DeviceInfo& dev : f.devices) {
-                auto backend = default_registry().create(dev.name);
+                auto backend = default_registry().create(dev.name, backend_options_from_environment());
                 const MapHandle h = backend->upload_map(map.view());
                 std::vector<ParticleScore> scores(poses.size());
                 const ScoringPlan plan = make_scoring_plan(templ.view(), {});

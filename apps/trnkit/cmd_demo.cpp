@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <iostream>
 
+#include "backend_env.hpp"
 #include "commands.hpp"
 #include "filter_model_options.hpp"
 #include "options.hpp"
@@ -67,9 +68,9 @@ void demo(const DemoArgs& a) {
     std::vector<filter::BackendTiming> timings;
     std::unique_ptr<Backend> backend;
     if (a.backend == "fastest") {
-        backend = filter::create_fastest_backend(&timings);
+        backend = filter::create_fastest_backend(backend_options_from_environment(), &timings);
     } else {
-        backend = default_registry().create(a.backend);
+        backend = default_registry().create(a.backend, backend_options_from_environment());
     }
     std::cerr << "scoring on " << backend->info().name << " (" << backend->info().device << ")";
     if (!timings.empty()) {

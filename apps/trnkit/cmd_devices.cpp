@@ -1,6 +1,7 @@
 // `trnkit devices`: every backend family this build has, with its devices or why it has none.
 #include <iostream>
 
+#include "backend_env.hpp"
 #include "commands.hpp"
 #include "trn/registry.hpp"
 
@@ -11,7 +12,7 @@ void add_devices_command(CLI::App& app) {
     auto verbose = std::make_shared<bool>(false);
     cmd->add_flag("-v,--verbose", *verbose, "Show device details");
     cmd->callback([verbose] {
-        for (const FamilyStatus& f : default_registry().status()) {
+        for (const FamilyStatus& f : default_registry().status(backend_options_from_environment())) {
             std::cout << f.family << " - " << f.description << "\n";
             if (f.devices.empty()) std::cout << "  not available: " << f.why_none << "\n";
             for (const DeviceInfo& d : f.devices) {

@@ -1,7 +1,9 @@
 // `trnkit experiment NAME`: reproduces one of the dissertation's studies as independent, resumable
 // jobs and builds its tables (see trn/experiments/experiment.hpp and docs/RESULTS.md).
+#include <cstdlib>
 #include <iostream>
 
+#include "backend_env.hpp"
 #include "commands.hpp"
 #include "options.hpp"
 #include "trn/error.hpp"
@@ -38,6 +40,8 @@ void add_experiment_command(CLI::App& app) {
     cmd->add_flag("--force", a->force, "Write into a non-empty folder that is not an earlier output of this study");
     cmd->callback([a] {
         a->progress = true;
+        a->backend_options = backend_options_from_environment();
+        if (const char* dir = std::getenv("TRN_SHARED_DATA")) a->shared_data = dir;  // the real-map jobs
         const std::size_t missing = experiments::run_experiment(*a);
         if (missing && !a->list_jobs && !a->no_merge && !a->partial) throw trn::Error("experiment " + a->study + ": " + std::to_string(missing) + " job(s) not finished");
     });

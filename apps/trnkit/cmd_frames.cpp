@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "backend_env.hpp"
 #include "commands.hpp"
 #include "frame_workload.hpp"
 #include "options.hpp"
@@ -41,7 +42,7 @@ void add_frames_command(CLI::App& app) {
         if (a->particles <= 0) throw Error("--particles must be positive");
         io::check_output_file(a->out, "--out");  // before the run, which takes minutes
         limits::check_count("--particles", a->particles, limits::kMaxParticles, limits::kParticleBytes);
-        auto backend = default_registry().create(a->backend);
+        auto backend = default_registry().create(a->backend, backend_options_from_environment());
         energy::FrameRunConfig cfg;
         cfg.frames = a->frames, cfg.idle_s = a->idle_ms / 1000, cfg.lead_idle_s = a->lead_idle_ms / 1000, cfg.sync_unit_s = a->sync_unit_ms / 1000;
         FrameWorkload work = make_frame_workload(*backend, a->kernel, a->size, a->particles);

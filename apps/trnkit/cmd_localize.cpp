@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <iostream>
 
+#include "backend_env.hpp"
 #include "commands.hpp"
 #include "filter_model_options.hpp"
 #include "localize_inputs.hpp"
@@ -109,9 +110,9 @@ void localize(const LocalizeArgs& a) {
 
     std::unique_ptr<Backend> backend;
     if (a.backend == "fastest") {
-        backend = filter::create_fastest_backend();
+        backend = filter::create_fastest_backend(backend_options_from_environment());
     } else {
-        backend = default_registry().create(a.backend);
+        backend = default_registry().create(a.backend, backend_options_from_environment());
     }
     filter::BackendScorerOptions so;
     so.template_width = a.template_width;

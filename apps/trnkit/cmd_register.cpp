@@ -5,6 +5,7 @@
 #include <iostream>
 #include <numbers>
 
+#include "backend_env.hpp"
 #include "commands.hpp"
 #include "frame_registration.hpp"
 #include "real_air_folder.hpp"
@@ -74,7 +75,7 @@ void add_register_command(CLI::App& app) {
             frames.push_back(load_gray(f));
             names.push_back(std::filesystem::path(f).filename().string());
         }
-        auto backend = default_registry().create(a->backend);
+        auto backend = default_registry().create(a->backend, backend_options_from_environment());
         const MapHandle handle = backend->upload_map(map.view());
 
         std::string csv = kHeader;

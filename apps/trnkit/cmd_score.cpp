@@ -4,6 +4,7 @@
 #include <optional>
 #include <string_view>
 
+#include "backend_env.hpp"
 #include "commands.hpp"
 #include "options.hpp"
 #include "trn/io/atomic_file.hpp"
@@ -56,7 +57,7 @@ void add_score_command(CLI::App& app) {
         const std::vector<Pose> poses = read_poses_csv(a->poses);
         if (poses.empty()) throw Error(a->poses + ": no poses to score");
         if (!a->out.empty()) io::check_output_file(a->out, "--out");
-        auto backend = default_registry().create(a->backend);
+        auto backend = default_registry().create(a->backend, backend_options_from_environment());
         std::vector<ParticleScore> scores(poses.size());
         PhaseTimes t;
         try {

@@ -3,6 +3,7 @@
 #include <iostream>
 #include <vector>
 
+#include "backend_env.hpp"
 #include "commands.hpp"
 #include "trn/io/atomic_file.hpp"
 #include "trn/io/image_io.hpp"
@@ -29,7 +30,7 @@ void add_sobel_command(CLI::App& app) {
         io::check_output_folder(a->out, "sobel", /*force=*/true);
         if (std::filesystem::exists(a->out)) io::check_output_file(px, "--out"), io::check_output_file(py, "--out");
         limits::check_image(a->image + ": Sobel of image", img.width, img.height, limits::kMaxMapPixels, limits::kSobelBytesPerPixel);
-        auto backend = default_registry().create(a->backend);
+        auto backend = default_registry().create(a->backend, backend_options_from_environment());
         std::vector<std::int16_t> gx(img.pixels.size()), gy(img.pixels.size());
         PhaseTimes t;
         backend->sobel(img.view(), {gx.data(), img.width, img.height, img.width}, {gy.data(), img.width, img.height, img.width}, &t);

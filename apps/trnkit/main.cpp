@@ -9,6 +9,7 @@
 #include <string_view>
 
 #include "commands.hpp"
+#include "trn/build_info.hpp"
 #include "trn/error.hpp"
 
 namespace {
@@ -37,6 +38,9 @@ int run(int argc, char** argv) {
     app.failure_message([](const CLI::App*, const CLI::Error& e) {
         return "trnkit: error: " + one_line(e.what()) + " (see --help)\n";
     });
+    const trn::BuildInfo& build = trn::build_info();
+    app.set_version_flag("--version", "trnkit " + std::string(build.version) + " (commit " + std::string(build.git_commit) + ")",
+                         "Print the version and the git commit it was built from, then exit");
     trn::cli::add_devices_command(app);
     trn::cli::add_sobel_command(app);
     trn::cli::add_score_command(app);

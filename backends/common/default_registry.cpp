@@ -13,27 +13,29 @@
 namespace trn {
 namespace {
 
-BackendFamily single_device_family(std::unique_ptr<Backend> (*make)(), std::string description) {
-    const DeviceInfo info = make()->info();
-    return {info.family, std::move(description),
-            [info](std::string&) { return std::vector<DeviceInfo>{info}; },
-            [make](int) { return make(); }, ""};
+BackendFamily single_device_family(std::string name, std::string description,
+                                   std::function<std::unique_ptr<Backend>(const BackendOptions&)> make) {
+    return {std::move(name), std::move(description),
+            [make](const BackendOptions& options, std::string&) { return std::vector<DeviceInfo>{make(options)->info()}; },
+            [make](int, const BackendOptions& options) { return make(options); }};
 }
 
 // Listed so that `trnkit devices` and the tests say by name what this build lacks.
 [[maybe_unused]] BackendFamily not_built_family(std::string name, std::string description, std::string why) {
     return {std::move(name), std::move(description),
-            [why](std::string& why_none) {
+            [why](const BackendOptions&, std::string& why_none) {
                 why_none = why;
                 return std::vector<DeviceInfo>{};
             },
-            [](int) -> std::unique_ptr<Backend> { throw BackendUnavailable("backend not built"); }, ""};
+            [](int, const BackendOptions&) -> std::unique_ptr<Backend> { throw BackendUnavailable("backend not built"); }};
 }
 
 BackendRegistry build_default_registry() {
     BackendRegistry r;
-    r.add(single_device_family(&make_cpu_ref_backend, "naive reference (the test oracle)"));
-    r.add(single_device_family(&make_cpu_backend, "optimized CPU"));
+    r.add(single_device_family("cpu-ref", "naive reference (the test oracle)",
+                               [](const BackendOptions&) { return make_cpu_ref_backend(); }));
+    r.add(single_device_family("cpu", "optimized CPU",
+                               [](const BackendOptions& options) { return make_cpu_backend(options.cpu); }));
 #ifdef TRN_HAVE_OPENCL
     r.add(opencl_family());
 #else

@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cstdlib>
 #include <string>
 
 #include "trn/parse_number.hpp"
@@ -24,12 +23,12 @@ bool all_digits(std::string_view s) {
 
 void BackendRegistry::add(BackendFamily family) { families_.push_back(std::move(family)); }
 
-std::vector<FamilyStatus> BackendRegistry::status() const {
+std::vector<FamilyStatus> BackendRegistry::status(const BackendOptions& options) const {
     std::vector<FamilyStatus> out;
     for (const BackendFamily& f : families_) {
         FamilyStatus s{f.name, f.description, {}, {}};
         try {
-            s.devices = f.list_devices(s.why_none);
+            s.devices = f.list_devices(options, s.why_none);
         } catch (const std::exception& e) {
             s.devices.clear();
             s.why_none = e.what();
@@ -47,7 +46,8 @@ std::vector<std::string> BackendRegistry::available() const {
     return names;
 }
 
-std::unique_ptr<Backend> BackendRegistry::create(std::string_view spec) const {
+std::unique_ptr<Backend> BackendRegistry::create(std::string_view spec, BackendOptions options) const {
+    if (spec == "fastest") return create_fastest(std::move(options));
     const std::size_t colon = spec.find(':');
     const std::string family_name(spec.substr(0, colon));
     std::string selector = colon == std::string_view::npos ? std::string() : std::string(spec.substr(colon + 1));
@@ -58,13 +58,13 @@ std::unique_ptr<Backend> BackendRegistry::create(std::string_view spec) const {
         for (const BackendFamily& f : families_) known += (known.empty() ? "" : ", ") + f.name;
         throw BackendUnavailable("backend '" + std::string(spec) + "' is not built into this trnkit (built: " + known + ")");
     }
-    if (selector.empty() && !it->device_env.empty())
-        if (const char* env = std::getenv(it->device_env.c_str()); env && *env) selector = env;
+    if (selector.empty())
+        if (const auto d = options.default_device.find(family_name); d != options.default_device.end()) selector = d->second;
 
     std::string why;
     std::vector<DeviceInfo> devices;
     try {
-        devices = it->list_devices(why);
+        devices = it->list_devices(options, why);
     } catch (const std::exception& e) {
         why = e.what();
     }
@@ -91,7 +91,38 @@ std::unique_ptr<Backend> BackendRegistry::create(std::string_view spec) const {
             throw BackendUnavailable("backend '" + std::string(spec) + "': no " + family_name + " device name or driver contains '" +
                                      selector + "'");
     }
-    return it->create(index);
+    return it->create(index, options);
+}
+
+std::vector<std::string> BackendRegistry::preferred_order(const std::vector<DeviceInfo>& devices) {
+    auto rank = [](const DeviceInfo& d) {
+        if (d.type == "gpu") return d.family == "opencl" ? 0 : d.family == "vulkan" ? 1 : 2;
+        if (d.family == "cpu") return 3;
+        if (d.family == "cpu-ref") return 5;
+        return 4;
+    };
+    std::vector<DeviceInfo> sorted = devices;
+    std::stable_sort(sorted.begin(), sorted.end(), [&](const DeviceInfo& a, const DeviceInfo& b) {
+        return rank(a) != rank(b) ? rank(a) < rank(b) : a.name < b.name;
+    });
+    std::vector<std::string> names;
+    for (const DeviceInfo& d : sorted)
+        if (d.family != "cpu-ref" || sorted.size() == 1) names.push_back(d.name);
+    return names;
+}
+
+std::unique_ptr<Backend> BackendRegistry::create_fastest(BackendOptions options) const {
+    std::vector<DeviceInfo> devices;
+    for (const FamilyStatus& f : status(options)) devices.insert(devices.end(), f.devices.begin(), f.devices.end());
+    std::string why;
+    for (const std::string& name : preferred_order(devices)) {
+        try {
+            return create(name, options);
+        } catch (const Error& e) {  // listed but not usable (e.g. cannot build its kernels): the next one
+            why += (why.empty() ? "" : "; ") + std::string(e.what());
+        }
+    }
+    throw BackendUnavailable("no usable backend for 'fastest'" + (why.empty() ? std::string() : ": " + why));
 }
 
 }  // namespace trn

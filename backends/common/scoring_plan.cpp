@@ -1,4 +1,5 @@
 // Host-side preparation of a scoring call; see scoring_plan.hpp.
+#include "trn/impl/particle_sums.hpp"
 #include "trn/scoring_plan.hpp"
 
 #include <algorithm>

@@ -4,6 +4,7 @@
 #include "cpu_backend.hpp"
 #include "ncc_rows.hpp"
 #include "thread_pool.hpp"
+#include "trn/impl/particle_sums.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -18,6 +19,8 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+// More threads than this is a typing error, not a machine.
+constexpr int kMaxThreads = 4096;
 
 class CpuMap : public MapStorage {
 public:
@@ -55,22 +58,21 @@ struct Scratch {
     }
 };
 
-// AVX2 when the processor has it, unless TRN_CPU_SIMD=off (to test and compare the portable path).
-bool simd_enabled() {
-    const char* env = std::getenv("TRN_CPU_SIMD");
-    return cpu::avx2_available() && !(env && std::string(env) == "off");
-}
-
-// Hardware threads unless TRN_CPU_THREADS says otherwise.
-int thread_count() {
-    if (const char* env = std::getenv("TRN_CPU_THREADS"); env && std::atoi(env) > 0) return std::atoi(env);
-    return std::max(1u, std::thread::hardware_concurrency());
+// Worker threads: the hardware threads unless options.threads says otherwise.
+int thread_count(const BackendOptions::Cpu& options) {
+    if (options.threads < 0 || options.threads > kMaxThreads)
+        throw Error("BackendOptions.cpu.threads = " + std::to_string(options.threads) + ": expected 0 (the hardware threads) to " +
+                    std::to_string(kMaxThreads));
+    if (options.threads > 0) return options.threads;
+    return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 }
 
 class CpuBackend final : public Backend {
 public:
-    CpuBackend() {
- info_ = {"cpu", "cpu", "optimized C++ (thread pool)", "cpu", "trnkit",
+    // AVX2 when the processor has it, unless options.simd is off (to test and compare the portable path).
+    explicit CpuBackend(const BackendOptions::Cpu& options)
+        : use_avx2_(cpu::avx2_available() && options.simd), pool_(thread_count(options)) {
+        info_ = {"cpu", "cpu", "optimized C++ (thread pool)", "cpu", "trnkit",
                  std::to_string(pool_.threads()) + " threads (TRN_CPU_THREADS), " + std::to_string(std::thread::hardware_concurrency()) +
                      " hardware threads, inner loop " + (use_avx2_ ? "AVX2" : "portable") + " (TRN_CPU_SIMD=off forces portable)"};
     }
@@ -172,8 +174,8 @@ private:
     }
 
     DeviceInfo info_;
-    bool use_avx2_ = simd_enabled();
-    cpu::ThreadPool pool_{thread_count()};
+    bool use_avx2_;
+    cpu::ThreadPool pool_;
     std::vector<float> du_, dv_;
     std::int64_t st_ = 0, stt_ = 0;
 };
@@ -220,6 +222,6 @@ void CpuBackend::do_sobel(GrayView src, Int16View gx, Int16View gy, PhaseTimes* 
 
 }  // namespace
 
-std::unique_ptr<Backend> make_cpu_backend() { return std::make_unique<CpuBackend>(); }
+std::unique_ptr<Backend> make_cpu_backend(const BackendOptions::Cpu& options) { return std::make_unique<CpuBackend>(options); }
 
 }  // namespace trn

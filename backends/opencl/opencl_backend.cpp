@@ -14,6 +14,7 @@
 #include "../common/sobel_work_shape.hpp"
 #include "device_buffer.hpp"
 #include "embedded_kernels.hpp"
+#include "trn/impl/particle_sums.hpp"
 #include "program_cache.hpp"
 
 namespace trn::opencl {
@@ -42,14 +43,12 @@ double event_ms(cl_event e) {
     return end > start ? double(end - start) * 1e-6 : 0.0;
 }
 
-// TRN_OPENCL_WORK_GROUP=<power of two> replaces the default NCC work-group size (for tuning).
-std::optional<std::size_t> work_group_override() {
-    const char* text = std::getenv("TRN_OPENCL_WORK_GROUP");
-    if (!text || !*text) return std::nullopt;
-    char* end = nullptr;
-    const unsigned long v = std::strtoul(text, &end, 10);
-    if (*end != '\0' || v == 0 || (v & (v - 1)) != 0)
-        throw Error(std::string("TRN_OPENCL_WORK_GROUP='") + text + "': expected a power of two such as 64 or 256");
+// options.work_group (a power of two, for tuning) replaces the default NCC work-group size.
+std::optional<std::size_t> work_group_override(const BackendOptions::OpenCl& options) {
+    const std::uint32_t v = options.work_group;
+    if (v == 0) return std::nullopt;
+    if ((v & (v - 1)) != 0 || v > 65536)
+        throw Error("BackendOptions.opencl.work_group = " + std::to_string(v) + ": expected a power of two such as 64 or 256");
     return std::size_t(v);
 }
 
@@ -97,7 +96,7 @@ void require_work_group(cl_kernel k, const char* name, std::size_t needed) {
     if (allowed < needed)
         throw Error(std::string("OpenCL kernel ") + name + " allows work-groups of at most " + std::to_string(allowed) +
                     " on this device but is built for " + std::to_string(needed) +
-                    "; set TRN_OPENCL_WORK_GROUP to a smaller power of two");
+                    "; set BackendOptions.opencl.work_group (CLI: TRN_OPENCL_WORK_GROUP) to a smaller power of two");
 }
 
 // What the device says about running the Sobel kernel (choose_sobel_work_shape picks the shape per call).
@@ -115,10 +114,11 @@ WorkGroupLimits sobel_work_group_limits(cl_kernel k, cl_device_id device) {
 
 class OpenClBackend final : public Backend {
 public:
-    OpenClBackend(const DeviceRef& device, int index) : device_(device), info_(describe_device(device, index)) {
+    OpenClBackend(const DeviceRef& device, int index, const BackendOptions::OpenCl& options)
+        : device_(device), info_(describe_device(device, index)) {
         max_alloc_ = device_value<cl_ulong>(device.device, CL_DEVICE_MAX_MEM_ALLOC_SIZE);
         const auto max_wg = device_value<std::size_t>(device.device, CL_DEVICE_MAX_WORK_GROUP_SIZE);
-        wg_size_ = std::min(work_group_override().value_or(info_.type == "gpu" ? kGpuWorkGroup : kCpuWorkGroup),
+        wg_size_ = std::min(work_group_override(options).value_or(info_.type == "gpu" ? kGpuWorkGroup : kCpuWorkGroup),
                             floor_pow2(max_wg));
 
         cl_int err = CL_SUCCESS;
@@ -127,7 +127,7 @@ public:
         queue_.reset(clCreateCommandQueue(context_.get(), device_.device, CL_QUEUE_PROFILING_ENABLE, &err));
         check(err, "clCreateCommandQueue(" + info_.device + ", profiling)");
 
-        const ProgramCacheSettings cache = program_cache_settings();
+        const ProgramCacheSettings cache = program_cache_settings(options);
         const EmbeddedKernel ncc = embedded_ncc_score(), sobel = embedded_sobel3x3();
         BuiltProgram ncc_program = build_program(context_.get(), device_, ncc.file, ncc.source, ncc.sha256,
                                                  "-DTRN_WG_SIZE=" + std::to_string(wg_size_), cache);
@@ -371,8 +371,8 @@ void OpenClBackend::do_sobel(GrayView src, Int16View gx, Int16View gy, PhaseTime
 
 }  // namespace
 
-std::unique_ptr<Backend> make_opencl_backend(const DeviceRef& device, int index) {
-    return std::make_unique<OpenClBackend>(device, index);
+std::unique_ptr<Backend> make_opencl_backend(const DeviceRef& device, int index, const BackendOptions::OpenCl& options) {
+    return std::make_unique<OpenClBackend>(device, index, options);
 }
 
 }  // namespace trn::opencl

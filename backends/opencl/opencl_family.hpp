@@ -3,6 +3,6 @@
 
 namespace trn {
 // The OpenCL family: every device of every OpenCL platform as "opencl:<n>"; the device for a
-// bare "opencl" comes from $TRN_OPENCL_DEVICE (an index or a name substring).
+// bare "opencl" comes from BackendOptions.default_device["opencl"] (an index or a name substring).
 BackendFamily opencl_family();
 }  // namespace trn

@@ -109,13 +109,9 @@ double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std
 
 }  // namespace
 
-ProgramCacheSettings program_cache_settings() {
+ProgramCacheSettings program_cache_settings(const BackendOptions::OpenCl& options) {
     ProgramCacheSettings s;
-    if (const char* off = std::getenv("TRN_OPENCL_CACHE"); off && std::string_view(off) == "0") return s;
-    if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg)
-        s.dir = fs::path(xdg) / "trnkit" / "opencl";
-    else if (const char* home = std::getenv("HOME"); home && *home)
-        s.dir = fs::path(home) / ".cache" / "trnkit" / "opencl";
+    s.dir = options.program_cache_dir;
     s.enabled = !s.dir.empty();
     return s;
 }

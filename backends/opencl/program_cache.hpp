@@ -1,8 +1,8 @@
 #pragma once
 // Building OpenCL programs, with an on-disk cache of program binaries.
 //
-// Cache folder: $XDG_CACHE_HOME/trnkit/opencl, else ~/.cache/trnkit/opencl; TRN_OPENCL_CACHE=0
-// turns it off. An entry is keyed by the kernel source's SHA-256, the build options, the device
+// Cache folder: BackendOptions.opencl.program_cache_dir (none when empty; the CLI passes
+// $XDG_CACHE_HOME/trnkit/opencl, else ~/.cache/trnkit/opencl, and "" for TRN_OPENCL_CACHE=0). An entry is keyed by the kernel source's SHA-256, the build options, the device
 // name and version, the driver version and the platform name and version; the full key is stored
 // in the entry and compared on load, so a stale or foreign file is never used. Entries are
 // written to a temporary file and renamed into place, so readers never see half a file.
@@ -12,6 +12,7 @@
 #include <string_view>
 
 #include "cl_api.hpp"
+#include "trn/backend_options.hpp"
 #include "cl_devices.hpp"
 
 namespace trn::opencl {
@@ -21,8 +22,8 @@ struct ProgramCacheSettings {
     std::filesystem::path dir;
 };
 
-// From the environment (see above).
-ProgramCacheSettings program_cache_settings();
+// From the backend's options (see above).
+ProgramCacheSettings program_cache_settings(const BackendOptions::OpenCl& options);
 
 struct BuiltProgram {
     ProgramHandle program;

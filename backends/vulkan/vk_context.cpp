@@ -6,7 +6,7 @@
 
 namespace trn::vk {
 
-Context::Context(std::unique_ptr<Instance> instance, int index) : instance_(std::move(instance)) {
+Context::Context(std::unique_ptr<Instance> instance, int index, bool force_staging) : instance_(std::move(instance)) {
     const std::vector<VkPhysicalDevice> devices = instance_->physical_devices();
     if (index < 0 || index >= static_cast<int>(devices.size()))
         throw Error("vulkan: device index " + std::to_string(index) + " out of range (" + std::to_string(devices.size()) +
@@ -32,9 +32,8 @@ Context::Context(std::unique_ptr<Instance> instance, int index) : instance_(std:
                                        VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
     for (std::uint32_t i = 0; i < physical_.memory.memoryTypeCount; ++i)
         if ((physical_.memory.memoryTypes[i].propertyFlags & both) == both) shared_type = true;
-    const char* force = std::getenv("TRN_VULKAN_FORCE_STAGING");
     unified_ = shared_type && (type == VK_PHYSICAL_DEVICE_TYPE_CPU || type == VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU) &&
-               !(force && std::strcmp(force, "1") == 0);
+               !force_staging;
 }
 
 Context::~Context() {

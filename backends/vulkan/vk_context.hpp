@@ -12,7 +12,8 @@ class Context {
 public:
     // Creates device `index` of the instance's physical devices; throws trn::Error naming the reason
     // (out of range, no compute queue, Vulkan < 1.1, vkCreateDevice failure).
-    Context(std::unique_ptr<Instance> instance, int index);
+    // force_staging: use staging buffers even where device memory is host-visible (to test that path).
+    Context(std::unique_ptr<Instance> instance, int index, bool force_staging = false);
     ~Context();
     Context(const Context&) = delete;
     Context& operator=(const Context&) = delete;
@@ -25,8 +26,8 @@ public:
     const VkPhysicalDeviceLimits& limits() const { return physical_.properties.limits; }
 
     // Host-visible device-local memory is used directly (lavapipe, integrated GPUs); otherwise data
-    // goes through host-visible staging buffers and copy commands. TRN_VULKAN_FORCE_STAGING=1 forces
-    // the staging path (to test it on a unified-memory device).
+    // goes through host-visible staging buffers and copy commands. BackendOptions.vulkan.force_staging
+    // forces the staging path (to test it on a unified-memory device).
     bool unified_memory() const { return unified_; }
 
     // Index of a memory type allowed by type_bits with all `required` flags, preferring `preferred`.

@@ -55,11 +55,6 @@ std::vector<std::string> MessageLog::take() {
     return std::exchange(messages_, {});
 }
 
-bool validation_requested() {
-    const char* v = std::getenv("TRN_VULKAN_VALIDATION");
-    return v && std::strcmp(v, "1") == 0;
-}
-
 Instance::Instance(bool validation) {
     const LoaderApi& l = loader();
     std::uint32_t loader_version = VK_API_VERSION_1_0;

@@ -44,9 +44,6 @@ private:
     InstanceApi api_;
 };
 
-// True when TRN_VULKAN_VALIDATION=1.
-bool validation_requested();
-
 // What trnkit needs to know about one physical device.
 struct PhysicalDevice {
     VkPhysicalDevice handle = VK_NULL_HANDLE;

@@ -13,13 +13,6 @@
 namespace trn::vk {
 namespace {
 
-std::string cache_folder() {
-    if (const char* dir = std::getenv("TRN_VULKAN_PIPELINE_CACHE_DIR")) return dir;
-    if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return std::string(xdg) + "/trnkit";
-    if (const char* home = std::getenv("HOME"); home && *home) return std::string(home) + "/.cache/trnkit";
-    return {};
-}
-
 std::string cache_file_name(const VkPhysicalDeviceProperties& p) {
     std::ostringstream name;
     name << "vulkan-pipelines-" << std::hex << p.vendorID << "-" << p.deviceID << "-";
@@ -30,8 +23,7 @@ std::string cache_file_name(const VkPhysicalDeviceProperties& p) {
 
 }  // namespace
 
-PipelineCache::PipelineCache(Context& context) : context_(context) {
-    const std::string folder = cache_folder();
+PipelineCache::PipelineCache(Context& context, const std::string& folder) : context_(context) {
     if (!folder.empty()) path_ = folder + "/" + cache_file_name(context.physical().properties);
     std::vector<char> data;
     if (!path_.empty()) {

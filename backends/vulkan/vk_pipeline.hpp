@@ -16,13 +16,15 @@ namespace trn::vk {
 
 class PipelineCache {
 public:
-    // Loads the cache file for this device when present (see cache_path()).
-    explicit PipelineCache(Context& context);
+    // Loads the cache file for this device from `folder` when present (see path()); "" keeps the
+    // cache in memory only.
+    PipelineCache(Context& context, const std::string& folder);
     // Writes the cache back (atomically; a failure to write is ignored: it is only a cache).
     ~PipelineCache();
     VkPipelineCache handle() const { return cache_; }
-    // $TRN_VULKAN_PIPELINE_CACHE_DIR, else $XDG_CACHE_HOME/trnkit, else $HOME/.cache/trnkit, plus a
-    // file name made of the vendor, device and pipeline-cache UUID. Empty: no persistence.
+    // BackendOptions.vulkan.pipeline_cache_dir (the CLI: $TRN_VULKAN_PIPELINE_CACHE_DIR, else
+    // $XDG_CACHE_HOME/trnkit, else $HOME/.cache/trnkit) plus a file name made of the vendor, device
+    // and pipeline-cache UUID. Empty: no persistence.
     const std::string& path() const { return path_; }
 
 private:

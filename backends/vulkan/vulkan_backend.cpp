@@ -23,54 +23,47 @@ std::uint32_t floor_pow2(std::uint32_t v) {
     return p;
 }
 
-// Work-group size for scoring: $TRN_VULKAN_WORKGROUP when set (power of two, for tuning), else 8
-// on CPU devices (lavapipe runs a whole group on one thread; with 8 particles per group, 8 measured
+// Work-group size for scoring: options.work_group when set (power of two, for tuning), else 8 on
+// CPU devices (lavapipe runs a whole group on one thread; with 8 particles per group, 8 measured
 // fastest of 8..32 there, 640x480 templates) and 256 on GPUs; always within the device limits.
-std::uint32_t choose_score_group_size(const Context& ctx) {
+std::uint32_t choose_score_group_size(const Context& ctx, const BackendOptions::Vulkan& options) {
     std::uint32_t want = ctx.physical().properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? 8 : 256;
-    if (const char* env = std::getenv("TRN_VULKAN_WORKGROUP"); env && *env) {
-        const long v = std::strtol(env, nullptr, 10);
-        if (v < 1 || v > 1024 || (v & (v - 1)) != 0)
-            throw Error(std::string("vulkan: TRN_VULKAN_WORKGROUP=") + env + " is not a power of two in [1, 1024]");
-        want = static_cast<std::uint32_t>(v);
+    if (const std::uint32_t v = options.work_group; v != 0) {
+        if (v > 1024 || (v & (v - 1)) != 0)
+            throw Error("vulkan: BackendOptions.vulkan.work_group = " + std::to_string(v) + " is not a power of two in [1, 1024]");
+        want = v;
     }
     const auto& lim = ctx.limits();
     return floor_pow2(std::min({want, lim.maxComputeWorkGroupInvocations, lim.maxComputeWorkGroupSize[0]}));
 }
 
-// Particles per scoring work-group: $TRN_VULKAN_PARTICLES_PER_GROUP when set (1..16, for tuning),
-// else 8 on CPU devices (each template read then serves several particles; on lavapipe, 640x480
-// dense, 4, 8 and 16 measured within 10% of each other and 1 took 1.8x as long) and 1 on GPUs
-// (where one particle per group already gives enough groups).
-std::uint32_t choose_particles_per_group(const Context& ctx) {
+// Particles per scoring work-group: options.particles_per_group when set (1..16, for tuning), else
+// 8 on CPU devices (each template read then serves several particles; on lavapipe, 640x480 dense,
+// 4, 8 and 16 measured within 10% of each other and 1 took 1.8x as long) and 1 on GPUs (where one
+// particle per group already gives enough groups).
+std::uint32_t choose_particles_per_group(const Context& ctx, const BackendOptions::Vulkan& options) {
     std::uint32_t want = ctx.physical().properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? 8 : 1;
-    if (const char* env = std::getenv("TRN_VULKAN_PARTICLES_PER_GROUP"); env && *env) {
-        const long v = std::strtol(env, nullptr, 10);
-        if (v < 1 || v > 16) throw Error(std::string("vulkan: TRN_VULKAN_PARTICLES_PER_GROUP=") + env + " is not in [1, 16]");
-        want = static_cast<std::uint32_t>(v);
+    if (const std::uint32_t v = options.particles_per_group; v != 0) {
+        if (v > 16)
+            throw Error("vulkan: BackendOptions.vulkan.particles_per_group = " + std::to_string(v) + " is not in [1, 16]");
+        want = v;
     }
     return want;
 }
 
-// TRN_VULKAN_MAP_LAYOUT=bytes keeps maps four pixels to a word even where quads fit (to test that path).
-bool quad_maps_allowed() {
-    const char* env = std::getenv("TRN_VULKAN_MAP_LAYOUT");
-    return !(env && std::strcmp(env, "bytes") == 0);
-}
-
 }  // namespace
 
-VulkanBackend::VulkanBackend(int index)
-    : context_(std::make_shared<Context>(std::make_unique<Instance>(validation_requested()), index)) {
+VulkanBackend::VulkanBackend(int index, const BackendOptions::Vulkan& options)
+    : context_(std::make_shared<Context>(std::make_unique<Instance>(options.validation), index, options.force_staging)),
+      quad_maps_(options.quad_maps) {
     Context& ctx = *context_;
     info_ = ctx.physical().info;
     info_.details += std::string(", ") + (ctx.unified_memory() ? "unified memory (mapped device buffers)" : "staging buffers");
-    cache_ = std::make_unique<PipelineCache>(ctx);
+    cache_ = std::make_unique<PipelineCache>(ctx, options.pipeline_cache_dir);
     recorder_ = std::make_unique<Recorder>(ctx);
 
-    // TRN_VULKAN_NO_SUBGROUPS=1 forces the shared-memory reduction (to test it on any device).
-    const char* no_subgroups = std::getenv("TRN_VULKAN_NO_SUBGROUPS");
-    const bool subgroups = ctx.physical().subgroup_arithmetic() && !(no_subgroups && std::strcmp(no_subgroups, "1") == 0);
+    // options.subgroups = false forces the shared-memory reduction (to test it on any device).
+    const bool subgroups = ctx.physical().subgroup_arithmetic() && options.subgroups;
     const std::span<const std::uint32_t> ncc_code =
         subgroups ? std::span<const std::uint32_t>(ncc_score_subgroup) : std::span<const std::uint32_t>(ncc_score_shared);
     // Bindings: sample table, affines, sums, map bands (bytes layout), map bands (quad layout).
@@ -87,8 +80,8 @@ VulkanBackend::VulkanBackend(int index)
     constexpr std::size_t kMaxAllocation = std::size_t(1) << 30;
     map_placement_.band_bytes = std::min<std::size_t>(ctx.limits().maxStorageBufferRange, kMaxAllocation) & ~std::size_t(3);
     map_placement_.band_quads = std::min<std::size_t>(ctx.limits().maxTexelBufferElements, kMaxAllocation / 4);
-    score_group_size_ = choose_score_group_size(ctx);
-    particles_per_group_ = choose_particles_per_group(ctx);
+    score_group_size_ = choose_score_group_size(ctx, options);
+    particles_per_group_ = choose_particles_per_group(ctx, options);
     sobel_limits_ = sobel_work_group_limits(ctx);
     sobel_shape_ = choose_sobel_work_shape(sobel_limits_, kSobelStripPixels, 1);  // the group; rows per item vary per call
     info_.details += ", scoring work-group " + std::to_string(score_group_size_) + " for up to " +
@@ -139,7 +132,7 @@ MapHandle VulkanBackend::do_upload_map(GrayView map, PhaseTimes* times) {
 
     // Quads: H-1 quad rows of W words, no overlap; only while they fit the quad budget.
     const std::size_t quad_rows_per_band = max_quads / w;
-    const bool quads = quad_maps_allowed() && 4 * w * (h - 1) <= map_placement_.quad_budget && quad_rows_per_band > 0 &&
+    const bool quads = quad_maps_ && 4 * w * (h - 1) <= map_placement_.quad_budget && quad_rows_per_band > 0 &&
                        (h - 1 + quad_rows_per_band - 1) / quad_rows_per_band <= kMaxMapChunks;
     auto band_bytes = [&](std::size_t rows) { return quads ? rows * w * 4 : (rows * w + 3) & ~std::size_t(3); };
     std::size_t rows_per_chunk = quads ? std::min(h - 1, quad_rows_per_band) : h, chunk_count = 1;
@@ -202,6 +195,8 @@ MapHandle VulkanBackend::do_upload_map(GrayView map, PhaseTimes* times) {
 
 }  // namespace vk
 
-std::unique_ptr<Backend> make_vulkan_backend(int index) { return std::make_unique<vk::VulkanBackend>(index); }
+std::unique_ptr<Backend> make_vulkan_backend(int index, const BackendOptions::Vulkan& options) {
+    return std::make_unique<vk::VulkanBackend>(index, options);
+}
 
 }  // namespace trn

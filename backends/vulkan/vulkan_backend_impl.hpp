@@ -7,6 +7,7 @@
 
 #include "../common/sobel_work_shape.hpp"
 #include "trn/backend.hpp"
+#include "trn/backend_options.hpp"
 #include "vk_buffer.hpp"
 #include "vk_context.hpp"
 #include "vk_pipeline.hpp"
@@ -32,7 +33,7 @@ struct MapPlacement {
 // A map on the device as up to kMaxMapChunks row bands (layouts in ncc_score.comp). Quad layout:
 // uniform texel buffers (R32_UINT) with a word per pixel holding its 2x2 bilinear footprint, band
 // c holds quad rows [c*R, c*R + R), each band within maxTexelBufferElements. Bytes layout (when
-// quads would exceed kQuadMapBudget or need too many bands, or TRN_VULKAN_MAP_LAYOUT=bytes): storage buffers with four
+// quads would exceed kQuadMapBudget or need too many bands, or BackendOptions.vulkan.quad_maps is off): storage buffers with four
 // pixels to a word, band c holds rows [c*R, c*R + R] (one row of overlap), each band within
 // maxStorageBufferRange. Keeps the context alive so a map may outlive its backend object safely.
 class VulkanMap : public MapStorage {
@@ -48,7 +49,7 @@ public:
 
 class VulkanBackend final : public Backend {
 public:
-    explicit VulkanBackend(int index);
+    VulkanBackend(int index, const BackendOptions::Vulkan& options);
     ~VulkanBackend() override;
     const DeviceInfo& info() const override { return info_; }
     const MapPlacement& map_placement() const { return map_placement_; }
@@ -76,6 +77,7 @@ private:
     WorkGroupLimits sobel_limits_;  // from the device's queries (vulkan_sobel.cpp)
     SobelWorkShape sobel_shape_;    // its work-group (rows per item are chosen per band)
     MapPlacement map_placement_;
+    bool quad_maps_ = true;  // false: every map in the bytes layout (BackendOptions.vulkan.quad_maps)
     // Grow-only per-call buffers.
     std::unique_ptr<Mirror> samples_, affines_, sums_;
     // What the binding of the map layout a map does not use points at (every descriptor must be valid).

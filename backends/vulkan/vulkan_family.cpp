@@ -7,7 +7,7 @@
 namespace trn {
 namespace {
 
-std::vector<DeviceInfo> list_vulkan_devices(std::string& why_none) {
+std::vector<DeviceInfo> list_vulkan_devices(const BackendOptions&, std::string& why_none) {
     try {
         const vk::Instance instance(false);
         std::vector<DeviceInfo> out;
@@ -27,7 +27,7 @@ std::vector<DeviceInfo> list_vulkan_devices(std::string& why_none) {
 
 BackendFamily vulkan_family() {
     return {"vulkan", "Vulkan compute shaders (SPIR-V; lavapipe or any Vulkan 1.1 device)", &list_vulkan_devices,
-            [](int index) { return make_vulkan_backend(index); }, "TRN_VULKAN_DEVICE"};
+            [](int index, const BackendOptions& options) { return make_vulkan_backend(index, options.vulkan); }};
 }
 
 }  // namespace trn

@@ -4,6 +4,7 @@
 #include <array>
 #include <cstring>
 
+#include "trn/impl/particle_sums.hpp"
 #include "vulkan_backend_impl.hpp"
 
 namespace trn::vk {

@@ -7,6 +7,7 @@
 #include <set>
 
 #include "study.hpp"
+#include "world.hpp"
 #include "trn/build_info.hpp"
 #include "trn/error.hpp"
 #include "trn/parse_number.hpp"
@@ -22,9 +23,9 @@ std::vector<std::string> study_names() { return {"metrics", "heading", "sampling
 
 namespace {
 
-std::unique_ptr<Study> make_study(const std::string& name) {
-    if (name == "metrics") return make_metrics_study();
-    if (name == "heading") return make_heading_study();
+std::unique_ptr<Study> make_study(const std::string& name, const std::string& shared_data) {
+    if (name == "metrics") return make_metrics_study(orthophoto_path(shared_data));
+    if (name == "heading") return make_heading_study(orthophoto_path(shared_data));
     if (name == "sampling") return make_sampling_study();
     if (name == "conversion") return make_conversion_study();
     if (name == "robustness") return make_robustness_study();
@@ -79,7 +80,7 @@ std::string command_prefix(const ExperimentOptions& o, const std::string& out) {
 }  // namespace
 
 std::size_t run_experiment(const ExperimentOptions& o) {
-    const auto study = make_study(o.study);
+    const auto study = make_study(o.study, o.shared_data);
     Json config = study->config(o.quick);
     config["study"] = o.study;
     config["quick"] = o.quick;
@@ -122,7 +123,7 @@ std::size_t run_experiment(const ExperimentOptions& o) {
         for (std::size_t i = shard.index; i < jobs.size(); i += shard.count)
             if ((o.job.empty() || jobs[i].at("id") == o.job) && !finished(jobs[i])) todo.push_back(&jobs[i]);
         if (!todo.empty()) {
-            std::unique_ptr<Backend> backend = default_registry().create(o.backend);
+            std::unique_ptr<Backend> backend = default_registry().create(o.backend, o.backend_options);
             for (std::size_t k = 0; k < todo.size(); ++k) {
                 const Json& params = *todo[k];
                 if (o.progress) progress_bar(k, todo.size(), params.at("id").get<std::string>());

@@ -43,8 +43,9 @@ public:
     virtual std::string merge(const std::vector<Json>& outputs, const MergeContext& context) const = 0;
 };
 
-std::unique_ptr<Study> make_metrics_study();
-std::unique_ptr<Study> make_heading_study();
+// `orthophoto`: the real map's file (world.hpp: orthophoto_path), "" when absent.
+std::unique_ptr<Study> make_metrics_study(std::string orthophoto);
+std::unique_ptr<Study> make_heading_study(std::string orthophoto);
 std::unique_ptr<Study> make_sampling_study();
 std::unique_ptr<Study> make_conversion_study();
 std::unique_ptr<Study> make_robustness_study();

@@ -24,12 +24,13 @@ std::vector<int> offsets_deg() {
 
 class HeadingStudy : public Study {
 public:
+    explicit HeadingStudy(std::string orthophoto) : orthophoto_(std::move(orthophoto)) {}
     std::string name() const override { return "heading"; }
     Json config(bool quick) const override {
         return {{"frames_per_map", quick ? 24 : 500}, {"frames_per_job", quick ? 12 : 50}, {"altitude_m", 200},
                 {"camera", "640x480 60deg"},          {"template_width", 160},
                 {"procedural_map", "forest 1200 m, 1 m/px, map 2008 / frames 2010"},
-                {"orthophoto", orthophoto_path().empty() ? "absent" : "present (0.5 m/px, frames from the map aged 2 years)"}};
+                {"orthophoto", orthophoto_.empty() ? "absent" : "present (0.5 m/px, frames from the map aged 2 years)"}};
     }
     std::vector<Json> jobs(const Json& c) const override {
         std::vector<Json> out;
@@ -44,7 +45,7 @@ public:
 
     Json run_job(const Json& c, const Json& p, JobContext& ctx) const override {
         const bool ortho = p.at("map") == "orthophoto";
-        const auto [map, world] = study_map_pair(ortho, ctx.seed);
+        const auto [map, world] = study_map_pair(ortho ? orthophoto_ : std::string(), ctx.seed);
         const sim::Camera camera;
         const double altitude = c.at("altitude_m"), scale = sim::template_scale(camera, altitude, map->metres_per_pixel);
         const double margin = 0.5 * std::hypot(camera.width, camera.height) * scale + 2;
@@ -121,10 +122,13 @@ public:
         }
         return md;
     }
+
+private:
+    std::string orthophoto_;  // "" when absent
 };
 
 }  // namespace
 
-std::unique_ptr<Study> make_heading_study() { return std::make_unique<HeadingStudy>(); }
+std::unique_ptr<Study> make_heading_study(std::string orthophoto) { return std::make_unique<HeadingStudy>(std::move(orthophoto)); }
 
 }  // namespace trn::experiments

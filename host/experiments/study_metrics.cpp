@@ -31,12 +31,13 @@ float measure(const ParticleScore& s, int m) { return m == 0 ? s.ncc : m == 1 ? 
 
 class MetricsStudy : public Study {
 public:
+    explicit MetricsStudy(std::string orthophoto) : orthophoto_(std::move(orthophoto)) {}
     std::string name() const override { return "metrics"; }
     Json config(bool quick) const override {
         return {{"hypotheses", 500},       {"radius_m", 100},        {"trials_per_map", quick ? 3 : 20},
                 {"altitude_m", 200},       {"camera", "640x480 60deg"}, {"template_width", 160},
                 {"procedural_map", "forest 1200 m, 1 m/px, map 2008 / frames 2010"},
-                {"orthophoto", orthophoto_path().empty() ? "absent" : "present (0.5 m/px, frames from the map aged 2 years)"},
+                {"orthophoto", orthophoto_.empty() ? "absent" : "present (0.5 m/px, frames from the map aged 2 years)"},
                 {"noise", "salt 5%, pepper 5%, gaussian mean 25 sigma 40"}};
     }
     std::vector<Json> jobs(const Json& c) const override {
@@ -51,7 +52,7 @@ public:
     Json run_job(const Json& c, const Json& p, JobContext& ctx) const override {
         const bool ortho = p.at("map") == "orthophoto";
         const int trial = p.at("trial");
-        const auto [map, world] = study_map_pair(ortho, ctx.seed);
+        const auto [map, world] = study_map_pair(ortho ? orthophoto_ : std::string(), ctx.seed);
         const double mpp = map->metres_per_pixel, altitude = c.at("altitude_m"), radius_px = c.at("radius_m").get<double>() / mpp;
         const sim::Camera camera;
         const double scale = sim::template_scale(camera, altitude, mpp);
@@ -168,10 +169,13 @@ public:
         }
         return md;
     }
+
+private:
+    std::string orthophoto_;  // "" when absent
 };
 
 }  // namespace
 
-std::unique_ptr<Study> make_metrics_study() { return std::make_unique<MetricsStudy>(); }
+std::unique_ptr<Study> make_metrics_study(std::string orthophoto) { return std::make_unique<MetricsStudy>(std::move(orthophoto)); }
 
 }  // namespace trn::experiments

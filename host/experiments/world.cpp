@@ -54,30 +54,27 @@ std::shared_ptr<const sim::Map> procedural_map(sim::TerrainStyle style, std::uin
     return map;
 }
 
-std::string orthophoto_path() {
-    const char* dir = std::getenv("TRN_SHARED_DATA");
-    if (!dir || !*dir) return "";
-    const std::string path = std::string(dir) + "/orthophoto.png";
+std::string orthophoto_path(const std::string& shared_data) {
+    if (shared_data.empty()) return "";
+    const std::string path = shared_data + "/orthophoto.png";
     return std::filesystem::exists(path) ? path : "";
 }
 
-std::shared_ptr<const sim::Map> orthophoto_map() {
-    static std::shared_ptr<const sim::Map> map;
+std::shared_ptr<const sim::Map> orthophoto_map(const std::string& path) {
+    static std::map<std::string, std::shared_ptr<const sim::Map>> maps;
     std::lock_guard lock(cache_mutex);
-    if (!map) {
-        const std::string path = orthophoto_path();
-        if (path.empty()) throw Error("experiment: the orthophoto is not in $TRN_SHARED_DATA");
-        map = std::make_shared<const sim::Map>(sim::load_map(path, kOrthophotoMetresPerPixel));
-    }
+    if (path.empty()) throw Error("experiment: no orthophoto (not in the shared data folder)");
+    auto& map = maps[path];
+    if (!map) map = std::make_shared<const sim::Map>(sim::load_map(path, kOrthophotoMetresPerPixel));
     return map;
 }
 
-std::shared_ptr<const sim::Map> aged_orthophoto(double years, std::uint64_t seed) {
-    static std::map<std::pair<double, std::uint64_t>, std::shared_ptr<const sim::Map>> cache;
-    const auto base = orthophoto_map();
+std::shared_ptr<const sim::Map> aged_orthophoto(const std::string& path, double years, std::uint64_t seed) {
+    static std::map<std::tuple<std::string, double, std::uint64_t>, std::shared_ptr<const sim::Map>> cache;
+    const auto base = orthophoto_map(path);
     if (years <= 0) return base;
     std::lock_guard lock(cache_mutex);
-    auto& slot = cache[{years, seed}];
+    auto& slot = cache[{path, years, seed}];
     if (!slot) {
         sim::MapAgeingOptions o;
         o.years = years;
@@ -109,8 +106,8 @@ void add_dissertation_noise(GrayImage& image, std::uint64_t seed, double salt, d
     }
 }
 
-MapPair study_map_pair(bool orthophoto, std::uint64_t seed) {
-    if (orthophoto) return {orthophoto_map(), aged_orthophoto(2, seed)};
+MapPair study_map_pair(const std::string& orthophoto, std::uint64_t seed) {
+    if (!orthophoto.empty()) return {orthophoto_map(orthophoto), aged_orthophoto(orthophoto, 2, seed)};
     return {procedural_map(sim::TerrainStyle::Forest, seed, 2008, 1200), procedural_map(sim::TerrainStyle::Forest, seed, 2010, 1200)};
 }
 

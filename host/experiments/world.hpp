@@ -30,19 +30,21 @@ std::uint64_t mix_seed(std::uint64_t a, std::uint64_t b);
 // A procedural map, generated once per process for the same options.
 std::shared_ptr<const sim::Map> procedural_map(sim::TerrainStyle style, std::uint64_t seed, int year, double size_m);
 
-// $TRN_SHARED_DATA/orthophoto.png ("" when absent) and the map at 0.5 m per pixel (data README).
-std::string orthophoto_path();
+// SHARED_DATA/orthophoto.png ("" when absent or shared_data is "") and the map at 0.5 m per pixel
+// (data README). The folder comes from ExperimentOptions::shared_data (the CLI: $TRN_SHARED_DATA).
+std::string orthophoto_path(const std::string& shared_data);
 inline constexpr double kOrthophotoMetresPerPixel = 0.5;
-std::shared_ptr<const sim::Map> orthophoto_map();
-// The orthophoto aged by `years` with map_ageing (cached).
-std::shared_ptr<const sim::Map> aged_orthophoto(double years, std::uint64_t seed);
+std::shared_ptr<const sim::Map> orthophoto_map(const std::string& path);
+// The orthophoto at `path` aged by `years` with map_ageing (cached).
+std::shared_ptr<const sim::Map> aged_orthophoto(const std::string& path, double years, std::uint64_t seed);
 
 // The localization map and the two-years-newer world the frames are rendered from, as the metrics
 // and heading studies use them: the orthophoto, or a 1200 m procedural forest (2008 vs 2010).
 struct MapPair {
     std::shared_ptr<const sim::Map> map, world;
 };
-MapPair study_map_pair(bool orthophoto, std::uint64_t seed);
+// `orthophoto`: its path, or "" for the procedural forest.
+MapPair study_map_pair(const std::string& orthophoto, std::uint64_t seed);
 
 // A level camera frame over `map` at map pixel (x, y), compass heading yaw, with the simulator's
 // sensor noise (2% of full scale) seeded by noise_seed.

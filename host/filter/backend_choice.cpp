@@ -9,24 +9,7 @@
 
 namespace trn::filter {
 
-std::vector<std::string> preferred_backend_order(const std::vector<DeviceInfo>& devices) {
-    auto rank = [](const DeviceInfo& d) {
-        if (d.type == "gpu") return d.family == "opencl" ? 0 : d.family == "vulkan" ? 1 : 2;
-        if (d.family == "cpu") return 3;
-        if (d.family == "cpu-ref") return 5;
-        return 4;
-    };
-    std::vector<DeviceInfo> sorted = devices;
-    std::stable_sort(sorted.begin(), sorted.end(), [&](const DeviceInfo& a, const DeviceInfo& b) {
-        return rank(a) != rank(b) ? rank(a) < rank(b) : a.name < b.name;
-    });
-    std::vector<std::string> names;
-    for (const DeviceInfo& d : sorted)
-        if (d.family != "cpu-ref" || sorted.size() == 1) names.push_back(d.name);
-    return names;
-}
-
-std::unique_ptr<Backend> create_fastest_backend(std::vector<BackendTiming>* timings) {
+std::unique_ptr<Backend> create_fastest_backend(const BackendOptions& options, std::vector<BackendTiming>* timings) {
     // A textured test map and template; timing only, the values do not matter.
     const int mw = 512, mh = 512, tw = 160, th = 120;
     std::vector<std::uint8_t> map(std::size_t(mw) * mh), templ(std::size_t(tw) * th);
@@ -39,13 +22,13 @@ std::unique_ptr<Backend> create_fastest_backend(std::vector<BackendTiming>* timi
     std::vector<ParticleScore> out(poses.size());
 
     std::vector<DeviceInfo> devices;
-    for (const FamilyStatus& f : default_registry().status()) devices.insert(devices.end(), f.devices.begin(), f.devices.end());
+    for (const FamilyStatus& f : default_registry().status(options)) devices.insert(devices.end(), f.devices.begin(), f.devices.end());
     std::unique_ptr<Backend> chosen;  // the first usable one in preference order, never the quickest of this run
-    for (const std::string& name : preferred_backend_order(devices)) {
+    for (const std::string& name : BackendRegistry::preferred_order(devices)) {
         std::unique_ptr<Backend> b;
         double ms = 0;
         try {
-            b = default_registry().create(name);
+            b = default_registry().create(name, options);
             const MapHandle h = b->upload_map({map.data(), mw, mh, mw});
             const ScoringPlan plan = make_scoring_plan(GrayView{templ.data(), tw, th, tw}, {});
             b->score(h, plan, poses, out);  // warm-up: kernel builds, buffers

@@ -14,6 +14,7 @@
 
 #include "../common/test_images.hpp"
 #include "cli_process.hpp"
+#include "trn/build_info.hpp"
 
 namespace {
 
@@ -40,6 +41,30 @@ TEST_F(Cli, DevicesListsCpuBackendsAndExplainsMissingOnes) {
     EXPECT_NE(r.output.find("  cpu-ref  [cpu]"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("  cpu  [cpu]"), std::string::npos) << r.output;
     for (const char* family : {"opencl - ", "vulkan - "}) EXPECT_NE(r.output.find(family), std::string::npos) << r.output;
+}
+
+// The library reads no environment; the CLI turns the documented TRN_* variables into
+// BackendOptions (apps/trnkit/backend_env.cpp): a good value reaches the backend, a malformed one
+// is one line naming the variable (it was silently ignored before).
+TEST_F(Cli, BackendVariablesReachTheBackendThroughTheCli) {
+    ::setenv("TRN_CPU_THREADS", "3", 1);
+    Result r = run("devices --verbose");
+    EXPECT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("3 threads"), std::string::npos) << r.output;
+    ::setenv("TRN_CPU_THREADS", "abc", 1);
+    r = run("score --map " + path("map.png") + " --template " + path("templ.png") + " --poses " + path("poses.csv") + " --backend cpu");
+    ::unsetenv("TRN_CPU_THREADS");
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_NE(r.output.find("TRN_CPU_THREADS='abc'"), std::string::npos) << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+}
+
+// `trnkit --version`: the version and the git commit trn::build_info() was built with.
+TEST_F(Cli, VersionPrintsVersionAndCommit) {
+    const Result r = run("--version");
+    EXPECT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("trnkit " + std::string(trn::build_info().version)), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(std::string(trn::build_info().git_commit)), std::string::npos) << r.output;
 }
 
 TEST_F(Cli, ScoreWritesCsvWithTheTruePoseBest) {

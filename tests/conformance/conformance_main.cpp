@@ -1,6 +1,9 @@
 // trn_conformance --backend FAMILY[:DEVICE] [--require] [gtest flags]
-// Registers every case for every selected device and runs them against cpu-ref. A family with no
-// device is reported "NOT AVAILABLE" by name and exits 77 (ctest: skipped), or fails with --require.
+// Registers every case for every selected device and every variant of its family (code paths
+// chosen through BackendOptions: the cpu backend's portable loop, Vulkan's fallback paths) and runs
+// them against cpu-ref. A family with no device is reported "NOT AVAILABLE" by name and exits 77
+// (ctest: skipped), or fails with --require. Base options come from the TRN_* variables as in the
+// CLI (ctest sets TRN_VULKAN_VALIDATION=1).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,12 +12,37 @@
 #include <map>
 #include <memory>
 
+#include "backend_env.hpp"
 #include "cases.hpp"
 #include "trn/registry.hpp"
 
 namespace {
 
 constexpr int kNotAvailable = 77;
+
+// One set of options a family's devices are checked with; `name` ends the test-suite name.
+struct Variant {
+    std::string name;
+    trn::BackendOptions options;
+};
+
+// The code paths each family has besides its default one, so that a machine that would always take
+// the fast path (AVX2, subgroup arithmetic, unified memory, quad maps) checks the others as well.
+std::vector<Variant> variants(const std::string& family, const trn::BackendOptions& base) {
+    std::vector<Variant> out{{"", base}};
+    if (family == "cpu") {
+        Variant portable{"_portable", base};
+        portable.options.cpu.simd = false;
+        out.push_back(portable);
+    } else if (family == "vulkan") {
+        Variant fallbacks{"_fallbacks", base};  // shared-memory reduction, staging buffers, byte maps
+        fallbacks.options.vulkan.subgroups = false;
+        fallbacks.options.vulkan.force_staging = true;
+        fallbacks.options.vulkan.quad_maps = false;
+        out.push_back(fallbacks);
+    }
+    return out;
+}
 
 std::string test_suite_name(const std::string& device) {
     std::string s = "conformance_" + device;
@@ -84,24 +112,27 @@ int main(int argc, char** argv) {
     for (auto&& group : {trn::conformance::ncc_cases(), trn::conformance::sobel_cases(), trn::conformance::error_cases()})
         cases.insert(cases.end(), group.begin(), group.end());
 
+    const trn::BackendOptions base = trn::cli::backend_options_from_environment();
     std::shared_ptr<trn::Backend> ref = registry.create("cpu-ref");
-    for (const trn::DeviceInfo& d : devices) {
-        std::shared_ptr<trn::Backend> dut;
-        try {
-            dut = registry.create(d.name);
-        } catch (const std::exception& e) {  // e.g. a device that cannot build the kernels: a failure, by name
-            const std::string why = e.what();
-            std::cout << "CONFORMANCE " << d.name << ": cannot create the backend: " << why << "\n";
-            testing::RegisterTest(test_suite_name(d.name).c_str(), "create_backend", nullptr, d.name.c_str(), __FILE__, __LINE__,
-                                  [why]() -> testing::Test* { return new FailingTest(why); });
-            continue;
+    for (const trn::DeviceInfo& d : devices)
+        for (const Variant& v : variants(family, base)) {
+            const std::string suite = test_suite_name(d.name) + v.name, label = d.name + v.name;
+            std::shared_ptr<trn::Backend> dut;
+            try {
+                dut = registry.create(d.name, v.options);
+            } catch (const std::exception& e) {  // e.g. a device that cannot build the kernels: a failure, by name
+                const std::string why = e.what();
+                std::cout << "CONFORMANCE " << label << ": cannot create the backend: " << why << "\n";
+                testing::RegisterTest(suite.c_str(), "create_backend", nullptr, label.c_str(), __FILE__, __LINE__,
+                                      [why]() -> testing::Test* { return new FailingTest(why); });
+                continue;
+            }
+            std::cout << "CONFORMANCE " << label << ": " << d.device << " [" << d.type << "] (" << d.driver << "), "
+                      << cases.size() << " cases against cpu-ref; " << dut->info().details << "\n";
+            for (const auto& c : cases)
+                testing::RegisterTest(suite.c_str(), c.name.c_str(), nullptr, label.c_str(), __FILE__, __LINE__,
+                                      [dut, ref, &c]() -> testing::Test* { return new CaseTest(dut, ref, &c); });
         }
-        std::cout << "CONFORMANCE " << d.name << ": " << d.device << " [" << d.type << "] (" << d.driver << "), "
-                  << cases.size() << " cases against cpu-ref\n";
-        for (const auto& c : cases)
-            testing::RegisterTest(test_suite_name(d.name).c_str(), c.name.c_str(), nullptr, d.name.c_str(), __FILE__, __LINE__,
-                                  [dut, ref, &c]() -> testing::Test* { return new CaseTest(dut, ref, &c); });
-    }
     int gargc = static_cast<int>(rest.size());
     testing::InitGoogleTest(&gargc, rest.data());
     const int rc = RUN_ALL_TESTS();

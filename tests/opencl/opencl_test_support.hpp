@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "backend_env.hpp"  // the CLI's TRN_* variables -> BackendOptions (these tests use them)
 #include "cl_devices.hpp"
 #include "trn/registry.hpp"
 

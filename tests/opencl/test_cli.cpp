@@ -4,11 +4,18 @@
 #include <iterator>
 #include <sstream>
 
+#include <opencv2/imgcodecs.hpp>
+
 #include "opencl_test_support.hpp"
-#include "trn/io/image_io.hpp"
 
 namespace trn::test {
 namespace {
+
+// The test links the core's objects only (not trnkit::io), so it writes its PNGs with OpenCV.
+void save_gray(const std::string& path, GrayView image) {
+    const cv::Mat m(image.height, image.width, CV_8UC1, const_cast<std::uint8_t*>(image.data), std::size_t(image.stride));
+    ASSERT_TRUE(cv::imwrite(path, m)) << path;
+}
 
 int run(const std::string& command) { return std::system((command + " 2>/dev/null").c_str()); }
 

@@ -45,19 +45,40 @@ TEST(Registry, RefusesClearlyAndNeverFallsBack) {
     EXPECT_NE(message("cpu:nosuch").find("no cpu device name or driver contains 'nosuch'"), std::string::npos);
 }
 
-// Device choice through the family's environment variable, on a registry of two real cpu backends.
-TEST(Registry, EnvironmentVariablePicksTheDevice) {
+// Device choice through BackendOptions::default_device, on a registry of two real cpu backends;
+// the library reads no environment variable (a variable of the old name changes nothing).
+TEST(Registry, DefaultDeviceOptionPicksTheDevice) {
     BackendRegistry r;
     r.add({"pair", "two devices",
-           [](std::string&) {
+           [](const BackendOptions&, std::string&) {
                return std::vector<DeviceInfo>{{"pair:0", "pair", "first", "cpu", "", ""}, {"pair:1", "pair", "second", "cpu", "", ""}};
            },
-           [](int index) { return default_registry().create(index == 0 ? "cpu-ref" : "cpu"); }, "TRN_TEST_PAIR_DEVICE"});
-    ::setenv("TRN_TEST_PAIR_DEVICE", "second", 1);
-    EXPECT_EQ(r.create("pair")->info().name, "cpu");
-    EXPECT_EQ(r.create("pair:0")->info().name, "cpu-ref");  // an explicit device wins over the variable
-    ::unsetenv("TRN_TEST_PAIR_DEVICE");
+           [](int index, const BackendOptions&) { return default_registry().create(index == 0 ? "cpu-ref" : "cpu"); }});
+    BackendOptions second;
+    second.default_device["pair"] = "second";
+    EXPECT_EQ(r.create("pair", second)->info().name, "cpu");
+    EXPECT_EQ(r.create("pair:0", second)->info().name, "cpu-ref");  // an explicit device wins over the option
     EXPECT_EQ(r.create("pair")->info().name, "cpu-ref");
+    ::setenv("TRN_VULKAN_DEVICE", "99", 1);  // was read by the library before; now only the CLI reads it
+    EXPECT_NO_THROW(r.create("pair"));
+    ::unsetenv("TRN_VULKAN_DEVICE");
+}
+
+// Options reach the backend by value and are checked there, naming the field.
+TEST(Registry, CpuOptionsAreCheckedAndUsed) {
+    BackendOptions o;
+    o.cpu.threads = 3;
+    EXPECT_NE(default_registry().create("cpu", o)->info().details.find("3 threads"), std::string::npos);
+    o.cpu.threads = -1;
+    try {
+        default_registry().create("cpu", o);
+        ADD_FAILURE() << "cpu.threads = -1 accepted";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("BackendOptions.cpu.threads = -1"), std::string::npos) << e.what();
+    }
+    o.cpu.threads = 1;
+    o.cpu.simd = false;
+    EXPECT_NE(default_registry().create("cpu", o)->info().details.find("inner loop portable"), std::string::npos);
 }
 
 }  // namespace

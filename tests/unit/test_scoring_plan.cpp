@@ -5,6 +5,7 @@
 #include <set>
 
 #include "trn/error.hpp"
+#include "trn/impl/particle_sums.hpp"
 #include "trn/scoring_plan.hpp"
 
 namespace trn {

@@ -13,9 +13,11 @@ namespace {
 
 constexpr int kRepeats = 5;
 
-std::unique_ptr<Backend> unvalidated_vulkan() {
-    ScopedEnv validation("TRN_VULKAN_VALIDATION", "0");
-    return default_registry().create("vulkan");
+std::unique_ptr<Backend> unvalidated_vulkan(bool force_staging = false) {
+    return vulkan_with([&](auto& v) {
+        v.validation = false;
+        v.force_staging = force_staging;
+    });
 }
 
 TEST(VulkanAllocations, CounterSeesOperatorNew) {
@@ -64,11 +66,7 @@ TEST(VulkanAllocations, RepeatedSparseScoresAllocateNothing) {
 
 TEST(VulkanAllocations, RepeatedScoresOnTheStagingPathAllocateNothing) {
     TRN_REQUIRE_VULKAN();
-    std::unique_ptr<Backend> backend;
-    {
-        ScopedEnv staging("TRN_VULKAN_FORCE_STAGING", "1");
-        backend = unvalidated_vulkan();
-    }
+    std::unique_ptr<Backend> backend = unvalidated_vulkan(true);
     EXPECT_EQ(allocations_of_repeated_scores(*backend, ScoreOptions{}, 64), 0u) << "operator new calls in steady state";
 }
 

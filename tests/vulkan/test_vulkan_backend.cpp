@@ -3,6 +3,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include <cstring>
+#include <functional>
 #include <iostream>
 
 #include "vulkan_test_support.hpp"
@@ -23,26 +24,19 @@ TEST(VulkanDevices, ListedWithNameDriverAndDetails) {
             EXPECT_NE(d.details.find("subgroup size"), std::string::npos) << d.details;
         }
     }
-    auto backend = default_registry().create("vulkan");
+    auto backend = default_registry().create("vulkan", env_options());
     std::cout << "vulkan device under test: " << backend->info().device << " (" << backend->info().driver << ")\n";
 }
 
-TEST(VulkanDevices, PickedByEnvironmentVariableAndName) {
+TEST(VulkanDevices, PickedByDefaultDeviceOptionAndName) {
     TRN_REQUIRE_VULKAN();
-    const std::string first = default_registry().create("vulkan:0")->info().device;
-    {
-        ScopedEnv env("TRN_VULKAN_DEVICE", "0");
-        EXPECT_EQ(default_registry().create("vulkan")->info().device, first);
-    }
-    EXPECT_EQ(default_registry().create("vulkan:" + first.substr(0, 4))->info().device, first);
-    ScopedEnv env("TRN_VULKAN_DEVICE", "99");
-    EXPECT_THROW(default_registry().create("vulkan"), BackendUnavailable);
-}
-
-// The Vulkan backend created while environment variable `name` is `value` (which picks its path).
-std::unique_ptr<Backend> vulkan_with(const char* name, const char* value) {
-    ScopedEnv env(name, value);
-    return default_registry().create("vulkan");
+    BackendOptions o = env_options();
+    const std::string first = default_registry().create("vulkan:0", o)->info().device;
+    o.default_device["vulkan"] = "0";
+    EXPECT_EQ(default_registry().create("vulkan", o)->info().device, first);
+    EXPECT_EQ(default_registry().create("vulkan:" + first.substr(0, 4), o)->info().device, first);
+    o.default_device["vulkan"] = "99";
+    EXPECT_THROW(default_registry().create("vulkan", o), BackendUnavailable);
 }
 
 // Dense, random and explicit sampling against cpu-ref.
@@ -62,24 +56,24 @@ void scores_match_reference(Backend& dut) {
 
 TEST(VulkanPaths, StagingBuffersMatchReference) {
     TRN_REQUIRE_VULKAN();
-    auto dut = vulkan_with("TRN_VULKAN_FORCE_STAGING", "1");
+    auto dut = vulkan_with([](auto& v) { v.force_staging = true; });
     EXPECT_NE(dut->info().details.find("staging buffers"), std::string::npos);
     scores_match_reference(*dut);
 }
 
 TEST(VulkanPaths, SharedMemoryReductionMatchesReference) {
     TRN_REQUIRE_VULKAN();
-    auto dut = vulkan_with("TRN_VULKAN_NO_SUBGROUPS", "1");
+    auto dut = vulkan_with([](auto& v) { v.subgroups = false; });
     EXPECT_NE(dut->info().details.find("shared-memory reduction"), std::string::npos);
     scores_match_reference(*dut);
 }
 
 TEST(VulkanPaths, OtherWorkGroupSizesMatchReference) {
     TRN_REQUIRE_VULKAN();
-    for (const char* size : {"1", "8", "128"}) {
-        SCOPED_TRACE(std::string("work-group ") + size);
-        auto dut = vulkan_with("TRN_VULKAN_WORKGROUP", size);
-        EXPECT_NE(dut->info().details.find(std::string("work-group ") + size + " "), std::string::npos) << dut->info().details;
+    for (std::uint32_t size : {1u, 8u, 128u}) {
+        SCOPED_TRACE("work-group " + std::to_string(size));
+        auto dut = vulkan_with([&](auto& v) { v.work_group = size; });
+        EXPECT_NE(dut->info().details.find("work-group " + std::to_string(size) + " "), std::string::npos) << dut->info().details;
         scores_match_reference(*dut);
     }
 }
@@ -87,19 +81,20 @@ TEST(VulkanPaths, OtherWorkGroupSizesMatchReference) {
 TEST(VulkanPaths, ParticlesPerGroupMatchReference) {
     TRN_REQUIRE_VULKAN();
     // 150 poses: 3 and 16 leave a partly filled last group; 16 is more than a group of 8 invocations.
-    for (const char* count : {"1", "3", "16"}) {
-        SCOPED_TRACE(std::string("particles per group ") + count);
-        ScopedEnv group("TRN_VULKAN_WORKGROUP", "8");
-        auto dut = vulkan_with("TRN_VULKAN_PARTICLES_PER_GROUP", count);
-        EXPECT_NE(dut->info().details.find(std::string(" for up to ") + count + " particle"), std::string::npos) << dut->info().details;
+    for (std::uint32_t count : {1u, 3u, 16u}) {
+        SCOPED_TRACE("particles per group " + std::to_string(count));
+        auto dut = vulkan_with([&](auto& v) {
+            v.work_group = 8;
+            v.particles_per_group = count;
+        });
+        EXPECT_NE(dut->info().details.find(" for up to " + std::to_string(count) + " particle"), std::string::npos) << dut->info().details;
         scores_match_reference(*dut);
     }
 }
 
 TEST(VulkanPaths, BatchesSmallerThanAGroupMatchReference) {
     TRN_REQUIRE_VULKAN();
-    ScopedEnv per_group("TRN_VULKAN_PARTICLES_PER_GROUP", "8");  // 1, 3 and 7 poses take the smaller groups
-    auto dut = default_registry().create("vulkan");
+    auto dut = vulkan_with([](auto& v) { v.particles_per_group = 8; });  // 1, 3 and 7 poses take the smaller groups
     auto ref = default_registry().create("cpu-ref");
     const PaddedGray map = textured_image(301, 207, 61);
     const PaddedGray templ = textured_image(41, 29, 62);
@@ -113,27 +108,34 @@ TEST(VulkanPaths, BatchesSmallerThanAGroupMatchReference) {
 
 TEST(VulkanPaths, BytesMapLayoutMatchesReference) {
     TRN_REQUIRE_VULKAN();
-    auto dut = vulkan_with("TRN_VULKAN_MAP_LAYOUT", "bytes");
+    auto dut = vulkan_with([](auto& v) { v.quad_maps = false; });
     scores_match_reference(*dut);
+}
+
+// A bad option is an error naming the field.
+void expect_option_error(const std::function<void(BackendOptions::Vulkan&)>& change, const std::string& field) {
+    try {
+        vulkan_with(change);
+        ADD_FAILURE() << field << " accepted";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
+    }
 }
 
 TEST(VulkanPaths, BadParticlesPerGroupIsAnError) {
     TRN_REQUIRE_VULKAN();
-    for (const char* bad : {"0", "17", "x"}) {
-        ScopedEnv env("TRN_VULKAN_PARTICLES_PER_GROUP", bad);
-        EXPECT_THROW(default_registry().create("vulkan"), Error) << bad;
-    }
+    expect_option_error([](auto& v) { v.particles_per_group = 17; }, "BackendOptions.vulkan.particles_per_group = 17");
 }
 
 TEST(VulkanPaths, BadWorkGroupSizeIsAnError) {
     TRN_REQUIRE_VULKAN();
-    ScopedEnv env("TRN_VULKAN_WORKGROUP", "48");
-    EXPECT_THROW(default_registry().create("vulkan"), Error);
+    expect_option_error([](auto& v) { v.work_group = 48; }, "BackendOptions.vulkan.work_group = 48");
+    expect_option_error([](auto& v) { v.work_group = 2048; }, "BackendOptions.vulkan.work_group = 2048");
 }
 
 TEST(VulkanSobel, StagingPathIsBitExactWithOpenCV) {
     TRN_REQUIRE_VULKAN();
-    auto dut = vulkan_with("TRN_VULKAN_FORCE_STAGING", "1");
+    auto dut = vulkan_with([](auto& v) { v.force_staging = true; });
     for (auto [w, h] : {std::pair{1, 1}, {1, 9}, {9, 1}, {2, 2}, {77, 45}}) {
         SCOPED_TRACE(std::to_string(w) + "x" + std::to_string(h));
         const PaddedGray src = noise_image(w, h, 21, 2);
@@ -152,7 +154,7 @@ TEST(VulkanSobel, StagingPathIsBitExactWithOpenCV) {
 
 TEST(VulkanTiming, PhaseTimesComeFromTheDevice) {
     TRN_REQUIRE_VULKAN();
-    auto dut = default_registry().create("vulkan");
+    auto dut = default_registry().create("vulkan", env_options());
     const PaddedGray map = textured_image(400, 300, 31);
     const PaddedGray templ = textured_image(64, 48, 32);
     const std::vector<Pose> poses = random_poses(64, map.width, map.height, 33);
@@ -169,7 +171,7 @@ TEST(VulkanTiming, PhaseTimesComeFromTheDevice) {
 
 TEST(VulkanScore, RepeatedCallsAreBitIdenticalAcrossGrowingBatches) {
     TRN_REQUIRE_VULKAN();
-    auto dut = default_registry().create("vulkan");
+    auto dut = default_registry().create("vulkan", env_options());
     const PaddedGray map = textured_image(250, 250, 41);
     const PaddedGray templ = textured_image(33, 33, 42);
     const MapHandle handle = dut->upload_map(map.view());
@@ -190,7 +192,7 @@ TEST(VulkanScore, MapOutlivesItsBackend) {
     TRN_REQUIRE_VULKAN();
     MapHandle handle;
     {
-        auto dut = default_registry().create("vulkan");
+        auto dut = default_registry().create("vulkan", env_options());
         const PaddedGray map = textured_image(64, 64, 51);
         handle = dut->upload_map(map.view());
     }

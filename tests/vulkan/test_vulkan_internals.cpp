@@ -40,9 +40,8 @@ TEST(VulkanValidation, MissingLayerIsAClearError) {
     TRN_REQUIRE_VULKAN();
     const auto empty = fresh_temp_dir("trn-no-layers");
     ScopedEnv layers("VK_LAYER_PATH", empty.c_str());
-    ScopedEnv validation("TRN_VULKAN_VALIDATION", "1");
     try {
-        default_registry().create("vulkan");
+        vulkan_with([](auto& v) { v.validation = true; });
         FAIL() << "created a validated backend without the layer";
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("vulkan-validationlayers"), std::string::npos) << e.what();
@@ -59,19 +58,19 @@ TEST(VulkanDriver, MissingIcdIsReportedNotFatal) {
         EXPECT_FALSE(f.why_none.empty());
         std::cout << "vulkan without a driver: " << f.why_none << "\n";
     }
-    EXPECT_THROW(default_registry().create("vulkan"), BackendUnavailable);
+    EXPECT_THROW(default_registry().create("vulkan", env_options()), BackendUnavailable);
 }
 
 TEST(VulkanPipelineCache, WrittenToDiskAndReused) {
     TRN_REQUIRE_VULKAN();
     const auto dir = fresh_temp_dir("trn-vk-cache");
-    ScopedEnv env("TRN_VULKAN_PIPELINE_CACHE_DIR", dir.c_str());
+    const auto with_cache = [&](auto& v) { v.pipeline_cache_dir = dir.string(); };
     const PaddedGray map = textured_image(120, 90, 61);
     const PaddedGray templ = textured_image(21, 17, 62);
     const std::vector<Pose> poses = random_poses(20, map.width, map.height, 63);
     std::vector<ParticleScore> first(poses.size()), second(poses.size());
     {
-        auto dut = default_registry().create("vulkan");
+        auto dut = vulkan_with(with_cache);
         dut->score(dut->upload_map(map.view()), templ.view(), poses, {}, first, nullptr);
     }
     std::vector<std::filesystem::path> files;
@@ -85,7 +84,7 @@ TEST(VulkanPipelineCache, WrittenToDiskAndReused) {
     EXPECT_GE(header[0], 32u) << "header length";
     EXPECT_EQ(header[1], std::uint32_t(VK_PIPELINE_CACHE_HEADER_VERSION_ONE));
     {
-        auto dut = default_registry().create("vulkan");  // starts from the saved cache
+        auto dut = vulkan_with(with_cache);  // starts from the saved cache
         dut->score(dut->upload_map(map.view()), templ.view(), poses, {}, second, nullptr);
     }
     for (std::size_t i = 0; i < poses.size(); ++i) EXPECT_EQ(first[i].ncc, second[i].ncc) << i;

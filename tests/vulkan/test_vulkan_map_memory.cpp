@@ -33,7 +33,7 @@ void matches_reference(Backend& dut, const PaddedGray& map) {
 
 TEST(VulkanMapLayout, QuadsUpToTheBudgetThenBytes) {
     TRN_REQUIRE_VULKAN();
-    auto dut = default_registry().create("vulkan");
+    auto dut = default_registry().create("vulkan", env_options());
     vk::MapPlacement p = as_vulkan(*dut).map_placement();
     EXPECT_EQ(p.quad_budget, vk::kQuadMapBudget);
     const PaddedGray map = textured_image(301, 207, 71);
@@ -48,7 +48,7 @@ TEST(VulkanMapLayout, QuadsUpToTheBudgetThenBytes) {
 
 TEST(VulkanMapLayout, MapsSplitIntoBandsMatchReference) {
     TRN_REQUIRE_VULKAN();
-    auto dut = default_registry().create("vulkan");
+    auto dut = default_registry().create("vulkan", env_options());
     const PaddedGray map = textured_image(301, 207, 74, 2);
     vk::MapPlacement p = as_vulkan(*dut).map_placement();
     p.band_quads = 301 * 50;  // 206 quad rows in 5 bands
@@ -80,7 +80,7 @@ TEST(VulkanMapLayout, MapsSplitIntoBandsMatchReference) {
 // on lavapipe device memory is host memory, so the process grows by about that.
 TEST(VulkanMapMemory, LargeMapTakesAboutOneBytePerPixel) {
     TRN_REQUIRE_VULKAN();
-    auto dut = default_registry().create("vulkan");
+    auto dut = default_registry().create("vulkan", env_options());
     const int w = 9000, h = 8000;
     const std::vector<std::uint8_t> px = plain_map(w, h);
     MapHandle map;
@@ -97,10 +97,7 @@ TEST(VulkanMapMemory, LargeMapTakesAboutOneBytePerPixel) {
 // Staging path: the device copy plus one band's staging copy, not plus the whole map's.
 TEST(VulkanMapMemory, StagingHoldsOneBandAtATime) {
     TRN_REQUIRE_VULKAN();
-    auto dut = [] {
-        ScopedEnv env("TRN_VULKAN_FORCE_STAGING", "1");
-        return default_registry().create("vulkan");
-    }();
+    auto dut = vulkan_with([](auto& v) { v.force_staging = true; });
     const int w = 6000, h = 6000;
     vk::MapPlacement p = as_vulkan(*dut).map_placement();
     p.quad_budget = 0;                                          // bytes layout,

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "backend_env.hpp"
 #include "test_images.hpp"
 #include "trn/registry.hpp"
 
@@ -28,7 +29,19 @@ inline std::string vulkan_unavailable() {
             GTEST_SKIP() << why;                                                 \
     } while (0)
 
-// Sets an environment variable for the life of the object.
+// The options ctest runs these tests with (TRN_VULKAN_VALIDATION=1: the validation layer on),
+// read the way the CLI reads them; tests change single fields from there.
+inline BackendOptions env_options() { return cli::backend_options_from_environment(); }
+
+// The Vulkan backend with env_options() changed by `change` (which picks its path).
+template <typename Change>
+std::unique_ptr<Backend> vulkan_with(Change change) {
+    BackendOptions o = env_options();
+    change(o.vulkan);
+    return default_registry().create("vulkan", o);
+}
+
+// Sets an environment variable for the life of the object (for the Vulkan loader's own variables).
 class ScopedEnv {
 public:
     ScopedEnv(const char* name, const char* value) : name_(name) {

@@ -15,7 +15,9 @@
 #include "trn/image.hpp"
 #include "trn/scoring.hpp"
 #include "trn/scoring_plan.hpp"
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn {
 
 struct DeviceInfo {
@@ -72,3 +74,4 @@ protected:
 };
 
 }  // namespace trn
+TRN_API_END

@@ -3,7 +3,9 @@
 // what() to a person: messages always name the argument, file or device call at fault.
 #include <stdexcept>
 #include <string>
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn {
 
 class Error : public std::runtime_error {
@@ -18,3 +20,4 @@ public:
 };
 
 }  // namespace trn
+TRN_API_END

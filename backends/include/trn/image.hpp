@@ -3,7 +3,9 @@
 // of larger images can be passed without copying.
 #include <cstddef>
 #include <cstdint>
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn {
 
 template <typename T>
@@ -25,3 +27,4 @@ using Int16View = ImageView<std::int16_t>;
 using FloatView = ImageView<const float>;
 
 }  // namespace trn
+TRN_API_END

@@ -9,7 +9,9 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::limits {
 
 // Longest image side in pixels (maps, templates, frames, Sobel images). Map positions are floats:
@@ -65,3 +67,4 @@ void check_count(std::string_view what, std::int64_t count, std::int64_t max, do
 void check_memory(std::string_view what, double bytes, std::uint64_t physical = physical_memory_bytes());
 
 }  // namespace trn::limits
+TRN_API_END

@@ -7,7 +7,9 @@
 #include <cstdint>
 #include <optional>
 #include <string_view>
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn {
 
 // A whole number written with decimal digits only (no sign, no spaces); nullopt otherwise or
@@ -29,3 +31,4 @@ inline std::optional<double> parse_finite_real(std::string_view text) {
 }
 
 }  // namespace trn
+TRN_API_END

@@ -8,18 +8,19 @@
 #include <vector>
 
 #include "trn/backend.hpp"
+#include "trn/backend_options.hpp"
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn {
 
 struct BackendFamily {
     std::string name;         // "cpu-ref", "cpu", "opencl", "vulkan"
     std::string description;  // one line for `trnkit devices`
     // Lists this family's devices. When it has none it returns an empty list and says why.
-    std::function<std::vector<DeviceInfo>(std::string& why_none)> list_devices;
-    // Creates a backend on device `index` of list_devices().
-    std::function<std::unique_ptr<Backend>(int index)> create;
-    // Environment variable that picks the device when only the family is named ("" for none).
-    std::string device_env;
+    std::function<std::vector<DeviceInfo>(const BackendOptions& options, std::string& why_none)> list_devices;
+    // Creates a backend on device `index` of list_devices(), with the family's part of `options`.
+    std::function<std::unique_ptr<Backend>(int index, const BackendOptions& options)> create;
 };
 
 struct FamilyStatus {
@@ -35,15 +36,26 @@ public:
     const std::vector<BackendFamily>& families() const { return families_; }
 
     // Every family with its devices or the reason it has none (enumerates devices; not cheap).
-    std::vector<FamilyStatus> status() const;
+    // `options` only changes what the details say (e.g. the OpenCL program cache in use).
+    std::vector<FamilyStatus> status(const BackendOptions& options = {}) const;
     // Names of every usable device ("cpu-ref", "cpu", "opencl:0", ...).
     std::vector<std::string> available() const;
 
-    // Creates a backend from a spec: "cpu", "opencl" (the device in $TRN_OPENCL_DEVICE, else
-    // device 0), "opencl:1" (by index) or "opencl:pocl" (first device whose device or driver name
-    // contains the text, case-insensitive). Throws BackendUnavailable, saying why, when it cannot: it never
-    // falls back to another backend.
-    std::unique_ptr<Backend> create(std::string_view spec) const;
+    // Creates a backend from a spec: "cpu", "opencl" (the device in
+    // options.default_device["opencl"], else device 0), "opencl:1" (by index) or "opencl:pocl"
+    // (first device whose device or driver name contains the text, case-insensitive), or
+    // "fastest" (below). Throws BackendUnavailable, saying why, when it cannot: it never falls back
+    // to another backend. Throws trn::Error naming the field when an option is out of range.
+    std::unique_ptr<Backend> create(std::string_view spec, BackendOptions options = {}) const;
+
+    // "fastest": a fixed preference order, so that two runs on one machine always pick the same
+    // backend (a timing race could flip between near-equal devices): GPU devices (OpenCL, then
+    // Vulkan, by name), then the optimised CPU backend, then any other device (e.g. PoCL or
+    // lavapipe on the CPU), and cpu-ref (the slow oracle) only when it is the only one.
+    // The device names in that order; pure, so the order is testable.
+    static std::vector<std::string> preferred_order(const std::vector<DeviceInfo>& devices);
+    // The first device in preferred_order() that can be created with `options`.
+    std::unique_ptr<Backend> create_fastest(BackendOptions options = {}) const;
 
 private:
     std::vector<BackendFamily> families_;
@@ -53,3 +65,4 @@ private:
 const BackendRegistry& default_registry();
 
 }  // namespace trn
+TRN_API_END

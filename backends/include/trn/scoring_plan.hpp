@@ -8,7 +8,9 @@
 
 #include "trn/scoring.hpp"
 #include "trn/template_view.hpp"
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn {
 
 // px = (tx + a*du) + b*dv ; py = (ty + c*du) + d*dv  with du = u - cx, dv = v - cy (all float,
@@ -43,14 +45,5 @@ ScoringPlan make_scoring_plan(const TemplateView& templ, const ScoreOptions& opt
 // The deterministic sparse pixel choice used by Sampling::Kind::Random, exposed for tests.
 std::vector<SamplePoint> random_sample_points(int width, int height, double fraction, std::uint64_t seed);
 
-// Per-particle sums every backend accumulates over its valid samples, exactly: J = the map value I
-// in 1/128 grey levels (fixed::bilinear), T = plan.quantized. int64 cannot overflow (fixed_point.hpp).
-struct ParticleSums {
-    std::int64_t n = 0, sj = 0, sjj = 0, sjt = 0, st = 0, stt = 0;
-};
-
-// Turns the sums into scores and flags by the rules in scoring.hpp (128-bit integer products, so
-// cancellation costs nothing; the same bits for the same sums).
-ParticleScore finalize_score(const ParticleSums& s, const ScoringPlan& plan);
-
 }  // namespace trn
+TRN_API_END

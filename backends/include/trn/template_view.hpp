@@ -3,7 +3,9 @@
 #include <cstdint>
 
 #include "trn/image.hpp"
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn {
 
 struct TemplateView {
@@ -25,3 +27,4 @@ struct TemplateView {
 };
 
 }  // namespace trn
+TRN_API_END

@@ -16,7 +16,9 @@
 #include "trn/energy/integrate.hpp"
 #include "trn/energy/markers.hpp"
 #include "trn/energy/trace.hpp"
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::energy {
 
 struct AlignOptions {
@@ -61,3 +63,4 @@ ShiftSensitivity shift_sensitivity(const PowerTrace& trace, const MarkerFile& ma
                                    const IntegrationOptions& options);
 
 }  // namespace trn::energy
+TRN_API_END

@@ -12,7 +12,9 @@
 
 #include "trn/energy/run_report.hpp"
 #include "trn/energy/stats.hpp"
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::energy {
 
 enum class TestUnit {
@@ -93,3 +95,4 @@ std::string comparison_summary_text(const Comparison& c);
 std::string comparison_json(const Comparison& c);
 
 }  // namespace trn::energy
+TRN_API_END

@@ -11,7 +11,9 @@
 
 #include "trn/energy/markers.hpp"
 #include "trn/scoring.hpp"
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::energy {
 
 struct FrameRunConfig {
@@ -35,3 +37,4 @@ struct ClockPair {
 ClockPair now_both();
 
 }  // namespace trn::energy
+TRN_API_END

@@ -12,7 +12,9 @@
 #include <string>
 
 #include "trn/energy/parsers.hpp"
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::energy {
 
 struct Ina219Config {
@@ -58,3 +60,4 @@ SimulatedIna219Log simulate_ina219(const Ina219Config& config, const std::functi
                                    double poll_period_s, double poll_jitter_s = 0, std::uint64_t seed = 1);
 
 }  // namespace trn::energy
+TRN_API_END

@@ -13,7 +13,9 @@
 
 #include "trn/energy/markers.hpp"
 #include "trn/energy/trace.hpp"
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::energy {
 
 enum class Rule { Trapezoid, Hold };
@@ -58,3 +60,4 @@ struct RunEnergy {
 RunEnergy integrate_frames(const PowerTrace& trace, const std::vector<TimedInterval>& intervals, const IntegrationOptions& options = {});
 
 }  // namespace trn::energy
+TRN_API_END

@@ -12,7 +12,9 @@
 #include <vector>
 
 #include "trn/energy/trace.hpp"
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::energy {
 
 struct FrameMarker {
@@ -74,3 +76,4 @@ std::vector<TimedInterval> marker_intervals(const MarkerFile& markers, const Clo
 std::vector<TimedInterval> intervals_from_trace_markers(const PowerTrace& trace);
 
 }  // namespace trn::energy
+TRN_API_END

@@ -9,7 +9,9 @@
 #include <vector>
 
 #include "trn/energy/trace.hpp"
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::energy {
 
 using ParseOptions = std::map<std::string, std::string>;
@@ -71,3 +73,4 @@ PowerTrace read_power_log(const std::string& path, const std::string& format = "
 std::string format_trnkit_power(const PowerTrace& trace);
 
 }  // namespace trn::energy
+TRN_API_END

@@ -13,7 +13,9 @@
 
 #include "trn/energy/run_report.hpp"
 #include "trn/energy/trace.hpp"
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::energy {
 
 // `zoom_frames`: frames shown in the lower, zoomed panel (0: no zoom panel).
@@ -39,3 +41,4 @@ HistogramBins shared_bins(const std::vector<PlotSeries>& series);
 std::string terminal_for(const std::string& image, int width_px, int height_px);
 
 }  // namespace trn::energy
+TRN_API_END

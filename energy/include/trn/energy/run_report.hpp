@@ -10,7 +10,9 @@
 #include "trn/energy/integrate.hpp"
 #include "trn/energy/markers.hpp"
 #include "trn/energy/parsers.hpp"
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::energy {
 
 enum class AlignMode {
@@ -68,3 +70,4 @@ RunReport parse_run_report_json(const std::string& text, const std::string& name
 RunReport read_run_report(const std::string& path);
 
 }  // namespace trn::energy
+TRN_API_END

@@ -6,7 +6,9 @@
 #include <span>
 #include <string>
 #include <vector>
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::energy {
 
 struct Summary {
@@ -74,3 +76,4 @@ inline constexpr double kSmallestReportedP = 1e-300;
 std::string format_p(double p);
 
 }  // namespace trn::energy
+TRN_API_END

@@ -11,7 +11,9 @@
 
 #include "trn/energy/power_sampler.hpp"
 #include "trn/energy/trace.hpp"
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::energy {
 
 struct SysfsSource {
@@ -54,3 +56,4 @@ private:
 PowerTrace sample_sysfs(const SysfsSource& source, double period_s, double duration_s);
 
 }  // namespace trn::energy
+TRN_API_END

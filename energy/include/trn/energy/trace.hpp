@@ -6,7 +6,9 @@
 #include <optional>
 #include <string>
 #include <vector>
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::energy {
 
 // Every parser drops a reading outside [kMinPlausibleW, kMaxPlausibleW] and counts it in the
@@ -76,3 +78,4 @@ SamplingReport describe_sampling(const PowerTrace& trace);
 void validate_trace(const PowerTrace& trace);
 
 }  // namespace trn::energy
+TRN_API_END

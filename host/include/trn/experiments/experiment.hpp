@@ -10,12 +10,18 @@
 #include <string>
 #include <vector>
 
+#include "trn/backend_options.hpp"
+#include "trn/export.hpp"
+
+TRN_API_BEGIN
 namespace trn::experiments {
 
 struct ExperimentOptions {
     std::string study;           // one of study_names()
     std::string out;             // output folder (default: experiments/<study>[-quick])
     std::string backend = "cpu";  // scoring backend spec (registry.hpp)
+    BackendOptions backend_options;  // how that backend is created
+    std::string shared_data;     // folder holding orthophoto.png for the real-map jobs; "" : procedural maps only
     std::string shard = "1/1";   // run jobs i, i+n, i+2n ... (1-based i)
     std::string job;             // run only the job with this id (what --list-jobs prints)
     std::uint64_t seed = 1;
@@ -44,3 +50,4 @@ Shard parse_shard(const std::string& text);
 std::size_t run_experiment(const ExperimentOptions& options);
 
 }  // namespace trn::experiments
+TRN_API_END

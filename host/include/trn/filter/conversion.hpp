@@ -7,7 +7,9 @@
 //   logistic:v    F(x, v) = L(x, v) / L(1, v), L = (1 + e^{-5x})^{-1/v}  (2.20, 2.21)
 #include <string>
 #include <string_view>
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::filter {
 
 struct Conversion {
@@ -23,3 +25,4 @@ struct Conversion {
 };
 
 }  // namespace trn::filter
+TRN_API_END

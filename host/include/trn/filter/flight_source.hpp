@@ -10,7 +10,9 @@
 #include "trn/io/image_io.hpp"
 #include "trn/sim/air_format.hpp"
 #include "trn/sim/flight.hpp"
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::filter {
 
 struct FlightSample {
@@ -87,3 +89,4 @@ private:
 std::size_t count_air_rows(const std::string& folder);
 
 }  // namespace trn::filter
+TRN_API_END

@@ -4,7 +4,9 @@
 // probability `upper_quantile`, when the particles occupy k histogram bins:
 //   n = (k-1)/(2 eps) * (1 - 2/(9(k-1)) + sqrt(2/(9(k-1))) * z)^3,  z = standard normal quantile.
 #include <cstddef>
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::filter {
 
 // Inverse of the standard normal CDF, p in (0, 1) (Acklam's rational approximation refined by one
@@ -15,3 +17,4 @@ double normal_quantile(double p);
 double kld_bound(std::size_t occupied_bins, double epsilon, double upper_quantile);
 
 }  // namespace trn::filter
+TRN_API_END

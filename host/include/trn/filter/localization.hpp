@@ -10,7 +10,9 @@
 
 #include "trn/filter/flight_source.hpp"
 #include "trn/filter/particle_filter.hpp"
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::filter {
 
 struct LocalizationRow {
@@ -71,3 +73,4 @@ std::string format_lock_summary(const LocalizationSummary& summary);
 LocalizationSummary summarise(const std::vector<LocalizationRow>& rows, const FilterCounters& counters, double wall_s);
 
 }  // namespace trn::filter
+TRN_API_END

@@ -29,7 +29,9 @@
 #include <vector>
 
 #include "trn/scoring.hpp"
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::filter {
 
 struct LockMonitorConfig {
@@ -86,3 +88,4 @@ private:
 };
 
 }  // namespace trn::filter
+TRN_API_END

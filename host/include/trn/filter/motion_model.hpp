@@ -16,7 +16,9 @@
 // (delta_c = 0: the odometry's direction is dropped), for comparison.
 #include <array>
 #include <cmath>
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::filter {
 
 struct MotionModel {
@@ -52,3 +54,4 @@ void propagate_particle(const MotionModel& model, const StepMotion& m, double me
                         double& x, double& y, double& yaw);
 
 }  // namespace trn::filter
+TRN_API_END

@@ -41,7 +41,9 @@
 #include "trn/filter/lock_monitor.hpp"
 #include "trn/filter/motion_model.hpp"
 #include "trn/filter/scorer.hpp"
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::filter {
 
 enum class SamplingMethod { Kld, Importance, Rejection };
@@ -152,3 +154,4 @@ private:
 };
 
 }  // namespace trn::filter
+TRN_API_END

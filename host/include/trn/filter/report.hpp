@@ -6,7 +6,9 @@
 
 #include "trn/filter/localization.hpp"
 #include "trn/io/image_io.hpp"
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::filter {
 
 // One line per filter step. The lock monitor's columns: lock_state (none = not assessed: monitor
@@ -35,3 +37,4 @@ PlotFiles plot_run(const std::string& folder, const std::vector<LocalizationRow>
                    GrayView map, double metres_per_pixel, const std::string& title);
 
 }  // namespace trn::filter
+TRN_API_END

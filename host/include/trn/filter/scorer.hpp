@@ -7,7 +7,9 @@
 
 #include "trn/backend.hpp"
 #include "trn/io/image_io.hpp"
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::filter {
 
 class ParticleScorer {
@@ -47,3 +49,4 @@ private:
 GrayImage downscale_frame(GrayView frame, int width, double& factor);
 
 }  // namespace trn::filter
+TRN_API_END

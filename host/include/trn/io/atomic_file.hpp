@@ -11,7 +11,9 @@
 #include <sstream>
 #include <string>
 #include <string_view>
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::io {
 
 class AtomicFile {
@@ -51,3 +53,4 @@ std::string temporary_sibling(const std::string& path);
 void write_all(int fd, std::string_view bytes, const std::string& what);
 
 }  // namespace trn::io
+TRN_API_END

@@ -10,7 +10,9 @@
 #include <string_view>
 #include <utility>
 #include <vector>
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::io {
 
 // A gnuplot string expression whose value is gnuplot_sanitized(text): single-quoted segments
@@ -63,3 +65,4 @@ void run_gnuplot(const GnuplotJob& job);
 bool gnuplot_available();
 
 }  // namespace trn::io
+TRN_API_END

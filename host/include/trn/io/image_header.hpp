@@ -4,7 +4,9 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn {
 
 struct ImageSize {
@@ -17,3 +19,4 @@ struct ImageSize {
 std::optional<ImageSize> read_image_size(const std::string& path);
 
 }  // namespace trn
+TRN_API_END

@@ -5,7 +5,9 @@
 #include <vector>
 
 #include "trn/image.hpp"
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn {
 
 // An owning 8-bit grey image.
@@ -22,3 +24,4 @@ void save_gray(const std::string& path, GrayView image);
 void save_gradient(const std::string& path, ImageView<const std::int16_t> g);
 
 }  // namespace trn
+TRN_API_END

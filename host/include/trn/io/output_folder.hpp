@@ -5,7 +5,9 @@
 // folder is refused (its files are someone else's) unless `force` is given. Everything is checked
 // before any work starts, so a bad --out costs nothing and touches nothing.
 #include <string>
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::io {
 
 inline constexpr const char* kOutputMarker = ".trnkit-output";
@@ -53,3 +55,4 @@ private:
 };
 
 }  // namespace trn::io
+TRN_API_END

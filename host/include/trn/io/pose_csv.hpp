@@ -8,7 +8,9 @@
 
 #include "trn/limits.hpp"
 #include "trn/scoring.hpp"
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn {
 
 // More than max_poses poses is an error naming the line where the file passes the limit.
@@ -17,3 +19,4 @@ std::vector<Pose> read_poses_csv(std::istream& in, const std::string& source_nam
 std::vector<Pose> read_poses_csv(const std::string& path);
 
 }  // namespace trn
+TRN_API_END

@@ -26,7 +26,9 @@
 #include "trn/sim/camera.hpp"
 #include "trn/sim/flight.hpp"
 #include "trn/sim/map.hpp"
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::sim {
 
 struct Quaternion {
@@ -133,3 +135,4 @@ private:
 };
 
 }  // namespace trn::sim
+TRN_API_END

@@ -9,7 +9,9 @@
 // at Pose{x, y, yaw, scale}. Yaw is the compass heading of the top of the frame (the direction of
 // flight): 0 = north (map up), +pi/2 = east; positive yaw turns the frame clockwise on the map.
 #include <array>
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::sim {
 
 struct Camera {
@@ -39,3 +41,4 @@ struct CameraPose {
 std::array<double, 9> camera_to_map_homography(const Camera& camera, const CameraPose& pose, double metres_per_pixel);
 
 }  // namespace trn::sim
+TRN_API_END

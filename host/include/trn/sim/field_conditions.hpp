@@ -4,7 +4,9 @@
 #include <cstdint>
 
 #include "trn/sim/scenario.hpp"
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::sim {
 
 class FieldConditions {
@@ -24,3 +26,4 @@ private:
 };
 
 }  // namespace trn::sim
+TRN_API_END

@@ -11,7 +11,9 @@
 #include "trn/sim/render.hpp"
 #include "trn/sim/scenario.hpp"
 #include "trn/sim/sensors.hpp"
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::sim {
 
 struct GroundTruth {
@@ -81,3 +83,4 @@ private:
 };
 
 }  // namespace trn::sim
+TRN_API_END

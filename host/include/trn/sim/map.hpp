@@ -6,7 +6,9 @@
 #include <string>
 
 #include "trn/io/image_io.hpp"
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::sim {
 
 struct GeoOrigin {
@@ -35,3 +37,4 @@ struct LatLon {
 LatLon map_pixel_to_latlon(const Map& map, double x, double y);
 
 }  // namespace trn::sim
+TRN_API_END

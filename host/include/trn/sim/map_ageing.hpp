@@ -7,7 +7,9 @@
 #include <cstdint>
 
 #include "trn/sim/map.hpp"
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::sim {
 
 struct MapAgeingOptions {
@@ -21,3 +23,4 @@ struct MapAgeingOptions {
 Map age_map(const Map& map, const MapAgeingOptions& options);
 
 }  // namespace trn::sim
+TRN_API_END

@@ -12,7 +12,9 @@
 #include <string_view>
 
 #include "trn/sim/map.hpp"
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::sim {
 
 enum class TerrainStyle { Forest, Urban };
@@ -37,3 +39,4 @@ Map generate_procedural_map(const ProceduralMapOptions& options);
 GrayImage generate_procedural_region(const ProceduralMapOptions& options, int x0, int y0, int w, int h);
 
 }  // namespace trn::sim
+TRN_API_END

@@ -5,7 +5,9 @@
 
 #include "trn/sim/camera.hpp"
 #include "trn/sim/map.hpp"
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::sim {
 
 struct RenderOptions {
@@ -18,3 +20,4 @@ struct RenderOptions {
 GrayImage render_frame(const Map& map, const Camera& camera, const CameraPose& pose, const RenderOptions& options = {});
 
 }  // namespace trn::sim
+TRN_API_END

@@ -14,7 +14,9 @@
 #include <vector>
 
 #include "trn/sim/procedural_map.hpp"
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::sim {
 
 enum class TrajectoryShape { Line, Rectangle, Circle };
@@ -89,3 +91,4 @@ private:
 };
 
 }  // namespace trn::sim
+TRN_API_END

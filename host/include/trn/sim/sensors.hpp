@@ -1,7 +1,9 @@
 #pragma once
 // Simulated navigation sensors. Each one is seeded, so a run is reproducible.
 #include <cstdint>
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::sim {
 
 struct Vec3 {
@@ -84,3 +86,4 @@ private:
 double wrap_angle(double rad);  // to (-pi, pi]
 
 }  // namespace trn::sim
+TRN_API_END
