@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "trn/fixed_point.hpp"
+#include "trn/impl/particle_sums.hpp"
 
 namespace trn {
 namespace {

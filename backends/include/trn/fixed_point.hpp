@@ -11,7 +11,9 @@
 #include <cstdint>
 
 #include "trn/limits.hpp"
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::fixed {
 
 inline constexpr int kWeightBits = 7;
@@ -44,3 +46,4 @@ inline std::int32_t bilinear(int m00, int m10, int m01, int m11, int wx, int wy)
 }
 
 }  // namespace trn::fixed
+TRN_API_END

@@ -9,7 +9,9 @@
 #include <thread>
 
 #include "trn/energy/power_sampler.hpp"
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::energy {
 
 class BackgroundSampler {
@@ -40,3 +42,4 @@ private:
 };
 
 }  // namespace trn::energy
+TRN_API_END

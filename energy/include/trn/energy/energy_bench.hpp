@@ -11,7 +11,9 @@
 #include "trn/energy/frame_runner.hpp"
 #include "trn/energy/power_sampler.hpp"
 #include "trn/energy/run_report.hpp"
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::energy {
 
 struct BenchTarget {
@@ -68,3 +70,4 @@ std::string bench_markdown(const BenchResult& result);  // the table people read
 void plot_bench(const BenchResult& result, const std::string& folder);
 
 }  // namespace trn::energy
+TRN_API_END

@@ -3,7 +3,9 @@
 // columns they use, the units, an example line and the options (one place, next to the parsers).
 #include <string>
 #include <vector>
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::energy {
 
 struct PowerLogFormat {
@@ -21,3 +23,4 @@ const std::vector<PowerLogFormat>& power_log_format_catalog();
 std::string format_catalog_text();
 
 }  // namespace trn::energy
+TRN_API_END

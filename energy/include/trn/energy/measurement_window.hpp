@@ -17,7 +17,9 @@
 
 #include "trn/energy/frame_runner.hpp"
 #include "trn/energy/markers.hpp"
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::energy {
 
 class MeasurementWindows {
@@ -69,3 +71,4 @@ private:
 };
 
 }  // namespace trn::energy
+TRN_API_END

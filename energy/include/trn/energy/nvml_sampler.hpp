@@ -11,7 +11,9 @@
 #include <vector>
 
 #include "trn/energy/power_sampler.hpp"
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::energy {
 
 struct NvmlSpec {
@@ -51,3 +53,4 @@ private:
 };
 
 }  // namespace trn::energy
+TRN_API_END

@@ -11,7 +11,9 @@
 #include <vector>
 
 #include "trn/energy/trace.hpp"
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::energy {
 
 struct SamplerOptions {
@@ -50,3 +52,4 @@ double clock_seconds(SampleClock clock);
 PowerTrace sample_for(PowerSampler& sampler, double period_s, double duration_s, SampleClock clock);
 
 }  // namespace trn::energy
+TRN_API_END

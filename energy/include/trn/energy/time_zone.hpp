@@ -11,7 +11,9 @@
 
 #include "trn/energy/parsers.hpp"
 #include "trn/energy/trace.hpp"
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::energy {
 
 class TimeZone {
@@ -45,3 +47,4 @@ std::optional<TimeZone> take_time_zone(ParseOptions& options);
 void apply_time_zone(PowerTrace& trace, const TimeZone& zone);
 
 }  // namespace trn::energy
+TRN_API_END

@@ -6,7 +6,9 @@
 // frames). The result is cropped to the centred rectangle the tilted frame covers completely,
 // so no fill pixels enter the NCC; its centre is still the point below the camera.
 #include "trn/io/image_io.hpp"
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::filter {
 
 // Largest tilt (angle of the optical axis from the vertical) a frame may have and still be scored:
@@ -27,3 +29,4 @@ struct NadirFrame {
 NadirFrame warp_to_nadir(GrayView frame, double hfov_deg, double roll_rad, double pitch_rad);
 
 }  // namespace trn::filter
+TRN_API_END

@@ -11,7 +11,9 @@
 #include <string>
 
 #include "trn/io/image_io.hpp"
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::io {
 
 // This build can read GeoTIFF (it was built with GDAL).
@@ -49,3 +51,4 @@ private:
 };
 
 }  // namespace trn::io
+TRN_API_END
