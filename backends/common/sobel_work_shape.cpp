@@ -1,16 +1,11 @@
 // Work shapes of the device Sobel kernels; see sobel_work_shape.hpp.
 #include "sobel_work_shape.hpp"
+#include "pow2.hpp"
 
 #include <algorithm>
 
 namespace trn {
 namespace {
-
-std::size_t floor_pow2(std::size_t v) {
-    std::size_t p = 1;
-    while (p * 2 <= v) p *= 2;
-    return p;
-}
 
 std::size_t ceil_div(std::size_t a, std::size_t b) { return (a + b - 1) / b; }
 

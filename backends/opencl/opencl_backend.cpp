@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "../common/sobel_work_shape.hpp"
+#include "../common/pow2.hpp"
 #include "device_buffer.hpp"
 #include "embedded_kernels.hpp"
 #include "trn/impl/particle_sums.hpp"
@@ -28,12 +29,6 @@ constexpr std::size_t kCpuWorkGroup = 1;
 constexpr std::size_t kSobelPad = 16;  // TRN_SOBEL_PAD in sobel3x3.cl: bytes left of each source row
 constexpr int kSumsPerParticle = 6;    // n, sj, sjj, sjt, st, stt as longs: see ncc_score.cl
 constexpr int kAffinePerParticle = 8;  // a, b, c, d, tx, ty, (pad, pad)
-
-std::size_t floor_pow2(std::size_t n) {
-    std::size_t p = 1;
-    while (p * 2 <= n) p *= 2;
-    return p;
-}
 
 double event_ms(cl_event e) {
     cl_ulong start = 0, end = 0;

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "ncc_score_shared.h"
+#include "../common/pow2.hpp"
 #include "ncc_score_subgroup.h"
 #include "sobel3x3.h"
 #include "vulkan_backend_impl.hpp"
@@ -15,13 +16,6 @@
 namespace trn {
 namespace vk {
 namespace {
-
-// Largest power of two <= v (v >= 1).
-std::uint32_t floor_pow2(std::uint32_t v) {
-    std::uint32_t p = 1;
-    while (p * 2 <= v) p *= 2;
-    return p;
-}
 
 // Work-group size for scoring: options.work_group when set (power of two, for tuning), else 8 on
 // CPU devices (lavapipe runs a whole group on one thread; with 8 particles per group, 8 measured
