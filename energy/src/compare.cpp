@@ -22,6 +22,13 @@ std::string fmt(const char* f, double v) {
     return buf;
 }
 std::string g4(double v) { return fmt("%.4g", v); }
+
+// The 95 % CI shown beside a platform's mean follows the unit of the tests: with runs as the unit
+// it is the t-interval of the run means (frames of one run are not independent, so an interval
+// over pooled frames would claim far more certainty than the tests do).
+const Summary& ci_basis(const Comparison& c, const PlatformStats& p) {
+    return c.unit == "runs" && p.run_means.n >= 2 ? p.run_means : p.energy;
+}
 // CSV: the number, or the bound "<1e-300" when it underflowed (never a 0 that reads as certainty).
 std::string csv_p(double p) {
     if (std::isnan(p)) return "";
@@ -196,12 +203,13 @@ std::string tables_markdown(const Comparison& c) {
     os << "Unit of the tests: " << c.unit << ".\n";
     for (const auto& n : c.notes) os << "- " << n << "\n";
     os << "\n## Table 1: energy per frame (" << which << ", mJ) and frame time (ms)\n\n";
+    if (c.unit == "runs") os << "The 95 % CI of energy is over the run means (the unit of the tests).\n\n";
     os << "| platform | runs | n | flagged | mean mJ | SD | median | IQR | 95 % CI | SD of run means | within-run SD | mean ms | SD ms | median ms | IQR ms | 95 % CI ms |\n";
     os << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const auto& p : c.platforms) {
         const auto &e = p.energy, &t = p.time;
         os << "| " << p.name << " | " << p.runs << " | " << e.n << " | " << p.flagged << " | " << g4(e.mean) << " | " << g4(e.sd) << " | " << g4(e.median)
-           << " | " << g4(e.iqr()) << " | [" << g4(e.ci_low) << ", " << g4(e.ci_high) << "] | " << (p.run_means.n >= 2 ? g4(p.run_means.sd) : "-") << " | "
+           << " | " << g4(e.iqr()) << " | [" << g4(ci_basis(c, p).ci_low) << ", " << g4(ci_basis(c, p).ci_high) << "] | " << (p.run_means.n >= 2 ? g4(p.run_means.sd) : "-") << " | "
            << g4(p.within_run_sd) << " | " << g4(t.mean) << " | " << g4(t.sd) << " | " << g4(t.median) << " | " << g4(t.iqr()) << " | [" << g4(t.ci_low)
            << ", " << g4(t.ci_high) << "] |\n";
     }
@@ -250,9 +258,10 @@ std::string tables_markdown(const Comparison& c) {
 
 std::string comparison_summary_text(const Comparison& c) {
     std::ostringstream os;
-    os << "energy per frame (" << (c.options.net ? "net" : "gross") << ", mJ); tests on " << c.unit << "\n";
+    os << "energy per frame (" << (c.options.net ? "net" : "gross") << ", mJ); tests on " << c.unit << "; 95 % CI over "
+       << (c.unit == "runs" ? "run means" : "frames") << "\n";
     for (const auto& p : c.platforms) {
-        os << "  " << p.name << ": " << g4(p.energy.mean) << " [" << g4(p.energy.ci_low) << ", " << g4(p.energy.ci_high) << "], " << p.energy.n
+        os << "  " << p.name << ": " << g4(p.energy.mean) << " [" << g4(ci_basis(c, p).ci_low) << ", " << g4(ci_basis(c, p).ci_high) << "], " << p.energy.n
            << " frame(s) of " << p.runs << " run(s)";
         if (p.flagged) os << ", " << p.flagged << " flagged";
         if (p.shapiro) os << "; normality " << (p.normality_rejected(c.options.alpha) ? "REJECTED" : "not rejected") << " (p = " << format_p(p.shapiro->p) << ")";

@@ -5,6 +5,8 @@
 // Welch and Student in one run, runs as the unit, and the note when normality is rejected.
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
 #include <boost/math/distributions/normal.hpp>
 #include <cmath>
 #include <functional>
@@ -166,6 +168,15 @@ TEST(CompareStatistics, SeveralRunsPerPlatformMakeTheRunTheUnit) {
     EXPECT_GT(p.t().p, welch_t_test(a.energy_mj, c.platforms[1].energy_mj).p * 100);
     EXPECT_GT(a.run_means.sd, 0);
     EXPECT_GT(a.within_run_sd, 0);
+    // The CI shown beside the mean is the run means' too, not the (narrower) pooled frames' one.
+    const auto g4 = [](double v) { char b[32]; std::snprintf(b, sizeof b, "%.4g", v); return std::string(b); };
+    const std::string run_ci = "[" + g4(a.run_means.ci_low) + ", " + g4(a.run_means.ci_high) + "]";
+    const std::string frame_ci = "[" + g4(a.energy.ci_low) + ", " + g4(a.energy.ci_high) + "]";
+    ASSERT_NE(run_ci, frame_ci);
+    for (const std::string& text : {tables_markdown(c), comparison_summary_text(c)}) {
+        EXPECT_NE(text.find(run_ci), std::string::npos) << text;
+        EXPECT_EQ(text.find(frame_ci), std::string::npos) << text;
+    }
     o.unit = TestUnit::Frames;
     const Comparison f = compare_runs(in, o);
     EXPECT_EQ(f.unit, "frames");
