@@ -7,6 +7,7 @@
 #include <numeric>
 #include <string>
 
+#include "trn/detail/splitmix.hpp"
 #include "trn/error.hpp"
 #include "trn/fixed_point.hpp"
 #include "trn/limits.hpp"
@@ -24,14 +25,6 @@ std::uint32_t ScoringPlan::min_valid_samples() const {
 }
 
 namespace {
-
-// SplitMix64: tiny, fast, and the same sequence on every platform.
-std::uint64_t splitmix64(std::uint64_t& state) {
-    std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-}
 
 // T = round((t - offset) * 2^k): offset = the rounded mean (an integer, so 8-bit templates stay
 // exact), k the largest exponent <= 16 with max |t - offset| * 2^k <= 32767 (>= -11 for |t| <= 2^24).
@@ -57,7 +50,7 @@ std::vector<SamplePoint> random_sample_points(int width, int height, double frac
     std::iota(idx.begin(), idx.end(), 0u);
     std::uint64_t state = seed;
     for (std::size_t i = 0; i < count; ++i) {
-        const std::size_t j = i + splitmix64(state) % (total - i);
+        const std::size_t j = i + splitmix::next64(state) % (total - i);
         std::swap(idx[i], idx[j]);
     }
     idx.resize(count);

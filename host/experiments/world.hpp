@@ -6,19 +6,21 @@
 #include <memory>
 #include <string>
 
+#include "trn/detail/splitmix.hpp"
 #include "trn/sim/camera.hpp"
 #include "trn/sim/map.hpp"
 #include "trn/sim/procedural_map.hpp"
 
 namespace trn::experiments {
 
-// splitmix64-based generator: the studies must not depend on the standard library's distributions.
+// The project's SplitMix64 (trn/detail/splitmix.hpp) with the studies' own seeding: the studies
+// must not depend on the standard library's distributions.
 class Rng {
 public:
-    explicit Rng(std::uint64_t seed) : state_(seed * 0x9E3779B97F4A7C15ull + 0x632BE59BD9B4E019ull) {}
-    std::uint64_t next();
-    double uniform();  // [0, 1)
-    double normal();
+    explicit Rng(std::uint64_t seed) : state_(seed * splitmix::kGamma + 0x632BE59BD9B4E019ull) {}
+    std::uint64_t next() { return splitmix::next64(state_); }
+    double uniform() { return splitmix::uniform(state_); }  // [0, 1)
+    double normal() { return splitmix::normal(state_); }
     double uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
 
 private:

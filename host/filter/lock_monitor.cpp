@@ -3,18 +3,13 @@
 #include <algorithm>
 #include <string>
 
+#include "trn/detail/splitmix.hpp"
 #include "trn/error.hpp"
 
 namespace trn::filter {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-
-std::uint64_t mix64(std::uint64_t z) {
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-}
 
 }  // namespace
 
@@ -39,14 +34,11 @@ void LockMonitorConfig::validate() const {
 }
 
 LockMonitor::LockMonitor(const LockMonitorConfig& config, double metres_per_pixel, std::uint64_t seed)
-    : config_(config), mpp_(metres_per_pixel), rng_(mix64(seed ^ 0x10C4ull)) {
+    : config_(config), mpp_(metres_per_pixel), rng_(splitmix::mix64(seed ^ 0x10C4ull)) {
     config_.validate();
 }
 
-double LockMonitor::uniform() {
-    rng_ += 0x9E3779B97F4A7C15ull;
-    return static_cast<double>(mix64(rng_) >> 11) * 0x1.0p-53;
-}
+double LockMonitor::uniform() { return splitmix::uniform(rng_); }
 
 void LockMonitor::reset(double x, double y, double uncertainty_m) {
     dead_x_ = x, dead_y_ = y;

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <unordered_set>
 
+#include "trn/detail/splitmix.hpp"
 #include "trn/error.hpp"
 #include "trn/filter/kld.hpp"
 #include "trn/limits.hpp"
@@ -15,12 +16,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kDeg = kPi / 180;
-
-std::uint64_t mix64(std::uint64_t z) {
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-}
 
 double wrap(double a) {
     a = std::fmod(a + kPi, 2 * kPi);
@@ -68,17 +63,11 @@ ParticleFilter::ParticleFilter(ParticleScorer& scorer, const FilterConfig& confi
     : scorer_(scorer),
       config_(config),
       lock_((config.validate(), config.lock), config.metres_per_pixel, config.seed),  // validated before anything is built
-      rng_(mix64(config.seed ^ 0x5DEECE66Dull)) {}
+      rng_(splitmix::mix64(config.seed ^ 0x5DEECE66Dull)) {}
 
-double ParticleFilter::uniform() {
-    rng_ += 0x9E3779B97F4A7C15ull;
-    return static_cast<double>(mix64(rng_) >> 11) * 0x1.0p-53;
-}
+double ParticleFilter::uniform() { return splitmix::uniform(rng_); }
 
-double ParticleFilter::normal() {
-    const double u1 = 1.0 - uniform(), u2 = uniform();
-    return std::sqrt(-2.0 * std::log(u1)) * std::cos(2 * kPi * u2);
-}
+double ParticleFilter::normal() { return splitmix::normal(rng_); }
 
 void ParticleFilter::scatter(double x, double y, double heading, bool have_heading, double radius_m, std::size_t count,
                              std::size_t first, double heading_sd_deg) {

@@ -1,16 +1,18 @@
 #pragma once
-// Small deterministic random tools shared by the simulator (private header): the same numbers on
-// every platform and standard library, which std::normal_distribution does not promise.
-#include <cmath>
+// The simulator's deterministic random tools (private header): the project's SplitMix64
+// (trn/detail/splitmix.hpp) under the names the simulator uses, plus a hash of a seed and a few
+// integers for per-pixel and per-cell noise that needs no state.
 #include <cstdint>
+
+#include "trn/detail/splitmix.hpp"
 
 namespace trn::sim::detail {
 
-inline std::uint64_t mix64(std::uint64_t z) {
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-}
+using splitmix::mix64;
+using splitmix::next64;
+using splitmix::normal;
+using splitmix::uniform;
+using splitmix::unit;
 
 // A hash of a seed and up to four integers (grid cells, block indices, years ...): one strong
 // finaliser over a cheap combination, fast enough to call per pixel.
@@ -23,21 +25,7 @@ inline std::uint64_t hash(std::uint64_t seed, std::int64_t a, std::int64_t b = 0
     return mix64(mix64(h));
 }
 
-// Uniform in [0, 1) from 53 bits of a hash.
-inline double unit(std::uint64_t h) { return static_cast<double>(h >> 11) * 0x1.0p-53; }
-
 // The k-th independent uniform derived from one hash.
-inline double unit(std::uint64_t h, int k) { return unit(mix64(h + 0x9E3779B97F4A7C15ull * (k + 1))); }
-
-inline std::uint64_t next64(std::uint64_t& state) {
-    std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
-    return mix64(z);
-}
-inline double uniform(std::uint64_t& state) { return unit(next64(state)); }
-// Standard normal by Box-Muller.
-inline double normal(std::uint64_t& state) {
-    const double u1 = 1.0 - uniform(state), u2 = uniform(state);
-    return std::sqrt(-2.0 * std::log(u1)) * std::cos(6.283185307179586 * u2);
-}
+inline double unit(std::uint64_t h, int k) { return unit(mix64(h + splitmix::kGamma * (k + 1))); }
 
 }  // namespace trn::sim::detail
