@@ -8,27 +8,15 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "../tests/common/test_images.hpp"
 #include "trn/error.hpp"
 #include "trn/io/image_io.hpp"
 
 namespace trn::bench {
 namespace {
 
-// Blurred noise with a few hard edges: NCC has texture to work on, like aerial imagery.
-cv::Mat synthetic_map(int w, int h) {
-    cv::Mat noise(h, w, CV_32FC1);
-    cv::RNG rng(20240601);
-    rng.fill(noise, cv::RNG::UNIFORM, 0.0, 255.0);
-    cv::GaussianBlur(noise, noise, cv::Size(0, 0), 2.0);
-    cv::normalize(noise, noise, 10, 245, cv::NORM_MINMAX);
-    cv::Mat u8;
-    noise.convertTo(u8, CV_8UC1);
-    for (int k = 0; k < 40; ++k) {
-        const cv::Point a(rng.uniform(0, w), rng.uniform(0, h)), b(rng.uniform(0, w), rng.uniform(0, h));
-        cv::line(u8, a, b, cv::Scalar(rng.uniform(0, 256)), 1 + rng.uniform(0, 4));
-    }
-    return u8;
-}
+// The tests' texture (blurred noise with hard edges, like aerial imagery), with more edges.
+cv::Mat synthetic_map(int w, int h) { return test::textured_mat(w, h, 20240601, 40, 4); }
 
 MapInput load_map() {
     if (const char* dir = std::getenv("TRN_SHARED_DATA"); dir && *dir) {

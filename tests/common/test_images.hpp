@@ -22,9 +22,11 @@ struct PaddedGray {
     cv::Mat mat() const { return cv::Mat(height, width, CV_8UC1, const_cast<std::uint8_t*>(view().data), stride()); }
 };
 
-// Smooth random texture (blurred noise plus a few edges): what aerial imagery looks like to NCC.
-inline PaddedGray textured_image(int w, int h, std::uint32_t seed, int pad = 0) {
-    PaddedGray img{w, h, pad, std::vector<std::uint8_t>(std::size_t(w + 2 * pad) * (h + 2 * pad), 0xA5)};
+// Smooth random texture: blurred uniform noise stretched to 10..245 plus `edges` straight lines
+// (grey and width 1..max_line_width random), like roads and roofs: what aerial imagery looks like
+// to NCC. The one texture generator of the tests and the benchmarks (bench/inputs.cpp); cv::RNG
+// keeps the pixels the same on every platform for a seed.
+inline cv::Mat textured_mat(int w, int h, std::uint64_t seed, int edges, int max_line_width) {
     cv::Mat noise(h, w, CV_32FC1);
     cv::RNG rng(seed);
     rng.fill(noise, cv::RNG::UNIFORM, 0.0, 255.0);
@@ -32,12 +34,17 @@ inline PaddedGray textured_image(int w, int h, std::uint32_t seed, int pad = 0) 
     cv::normalize(noise, noise, 10, 245, cv::NORM_MINMAX);
     cv::Mat u8;
     noise.convertTo(u8, CV_8UC1);
-    // A few hard edges, like roads and roofs.
-    for (int k = 0; k < 6; ++k) {
+    for (int k = 0; k < edges; ++k) {
         const cv::Point a(rng.uniform(0, w), rng.uniform(0, h)), b(rng.uniform(0, w), rng.uniform(0, h));
-        cv::line(u8, a, b, cv::Scalar(rng.uniform(0, 256)), 1 + rng.uniform(0, 3));
+        cv::line(u8, a, b, cv::Scalar(rng.uniform(0, 256)), 1 + rng.uniform(0, max_line_width));
     }
-    u8.copyTo(img.mat());
+    return u8;
+}
+
+// textured_mat with six edges up to 3 px wide, in a PaddedGray.
+inline PaddedGray textured_image(int w, int h, std::uint32_t seed, int pad = 0) {
+    PaddedGray img{w, h, pad, std::vector<std::uint8_t>(std::size_t(w + 2 * pad) * (h + 2 * pad), 0xA5)};
+    textured_mat(w, h, seed, 6, 3).copyTo(img.mat());
     return img;
 }
 

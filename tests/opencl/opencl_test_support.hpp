@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "backend_env.hpp"  // the CLI's TRN_* variables -> BackendOptions (these tests use them)
+#include "../common/test_images.hpp"
 #include "cl_devices.hpp"
 #include "trn/registry.hpp"
 
@@ -70,17 +71,7 @@ inline std::vector<std::filesystem::path> files_with_extension(const std::filesy
     return out;
 }
 
-// A textured u8 image (smooth blobs plus noise) so NCC has a clear optimum.
-inline std::vector<std::uint8_t> textured_image(int w, int h, unsigned seed) {
-    std::mt19937 rng(seed);
-    std::uniform_int_distribution<int> noise(-20, 20);
-    std::vector<std::uint8_t> px(std::size_t(w) * h);
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            const double v = 128 + 60 * std::sin(x * 0.11 + y * 0.03) * std::cos(y * 0.07 - x * 0.02) + noise(rng);
-            px[std::size_t(y) * w + x] = static_cast<std::uint8_t>(std::clamp(v, 0.0, 255.0));
-        }
-    return px;
-}
+// The tests' texture (test_images.hpp) as a continuous w x h buffer.
+inline std::vector<std::uint8_t> textured_pixels(int w, int h, std::uint32_t seed) { return textured_image(w, h, seed).buffer; }
 
 }  // namespace trn::test

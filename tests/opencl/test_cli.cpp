@@ -51,7 +51,7 @@ protected:
         std::string why;
         if (opencl::enumerate_devices(why).empty()) GTEST_SKIP() << "no OpenCL device: " << why;
         const int mw = 300, mh = 240, tw = 64, th = 48, tx = 100, ty = 80;
-        map_ = textured_image(mw, mh, 3);
+        map_ = textured_pixels(mw, mh, 3);
         std::vector<std::uint8_t> templ(std::size_t(tw) * th);
         for (int y = 0; y < th; ++y)
             for (int x = 0; x < tw; ++x) templ[std::size_t(y) * tw + x] = map_[std::size_t(y + ty) * mw + x + tx];

@@ -40,7 +40,7 @@ std::string shape_text(const Shape& s) {
 // Scores on `dut` and cpu-ref and compares every particle (same rule as the conformance suite).
 void expect_matches_reference(Backend& dut, Backend& ref, const std::vector<std::uint8_t>& map, const Shape& shape) {
     SCOPED_TRACE(shape_text(shape));
-    const std::vector<std::uint8_t> templ = textured_image(shape.templ_w, shape.templ_h, 5);
+    const std::vector<std::uint8_t> templ = textured_pixels(shape.templ_w, shape.templ_h, 5);
     ScoreOptions options;
     if (shape.fraction < 1) options.sampling = Sampling::random(shape.fraction, 11);
     options.min_valid_fraction = 0.0;
@@ -79,7 +79,7 @@ TEST_P(OpenClNccTiles, MatchesCpuRefForEveryShape) {
     const auto ref = default_registry().create("cpu-ref");
     if (!group.empty())
         EXPECT_NE(dut->info().details.find("NCC work-group " + group + ","), std::string::npos) << dut->info().details;
-    const std::vector<std::uint8_t> map = textured_image(kMapW, kMapH, 3);
+    const std::vector<std::uint8_t> map = textured_pixels(kMapW, kMapH, 3);
     for (const Shape& shape : kShapes) expect_matches_reference(*dut, *ref, map, shape);
 }
 

@@ -12,8 +12,8 @@ namespace {
 // Scores a small fixed problem; used to show cold- and warm-built programs agree bit for bit.
 std::vector<ParticleScore> score_fixed_problem(Backend& b) {
     const int mw = 96, mh = 80;
-    const auto map = textured_image(mw, mh, 7);
-    const auto templ = textured_image(24, 18, 9);
+    const auto map = textured_pixels(mw, mh, 7);
+    const auto templ = textured_pixels(24, 18, 9);
     const MapHandle h = b.upload_map({map.data(), mw, mh, mw});
     std::vector<Pose> poses;
     for (int i = 0; i < 12; ++i) poses.push_back({20.0f + 4.5f * i, 30.0f + 2.0f * i, 0.1f * i, 0.8f + 0.05f * i});
