@@ -11,13 +11,13 @@
 #include "backend_env.hpp"
 #include "commands.hpp"
 #include "filter_model_options.hpp"
+#include "localization_report.hpp"
 #include "options.hpp"
 #include "progress.hpp"
 #include "trn/error.hpp"
 #include "trn/filter/backend_choice.hpp"
 #include "trn/filter/flight_source.hpp"
 #include "trn/filter/localization.hpp"
-#include "trn/filter/report.hpp"
 #include "trn/io/output_folder.hpp"
 #include "trn/registry.hpp"
 #include "trn/sim/procedural_map.hpp"
@@ -97,24 +97,15 @@ void demo(const DemoArgs& a) {
     filter::ParticleFilter pf(scorer, cfg);
     const filter::LocalizationResult result = filter::run_localization(source, pf, progress_bar);
 
-    io::open_output_folder(out, "demo", force);
-    filter::write_rows_csv(out + "/localization.csv", result.rows);
-    filter::write_summary_json(out + "/summary.json", result.summary,
-                               {{"backend", backend->info().name}, {"device", backend->info().device}, {"conversion", cfg.conversion.to_string()},
-                                {"sampling", filter::to_string(cfg.sampling)}, {"scenario", preset.name},
-                                {"scoring_density", a.sparse < 1 ? "random " + std::to_string(a.sparse) : "dense"}},
-                               filter::with_lock_numbers(result.summary, {{"seed", static_cast<double>(a.seed)}, {"filter_rate_hz", preset.fps / stride},
-                                {"map_year", static_cast<double>(a.map_year)},
-                                {"template_width", static_cast<double>(a.template_width)}, {"flight_year", static_cast<double>(a.flight_year)}}));
     std::cout << "DPC-PFL demo: " << preset.name << ", " << a.distance_km << " km at " << preset.altitude_m << " m, map "
               << a.flight_year - a.map_year << " years older than the flight, backend " << backend->info().name << ", seed " << a.seed
-              << "\n"
-              << filter::format_summary(result.summary) << filter::format_lock_summary(result.summary) << "summary JSON: " << out << "/summary.json\nper-step CSV: " << out
-              << "/localization.csv\n";
-    if (!a.no_plots) {
-        const filter::PlotFiles plots = filter::plot_run(out, result.rows, result.summary, map.image.view(), map.metres_per_pixel, preset.name);
-        std::cout << "plots: " << plots.trajectory_png << "\n       " << plots.error_png << "\n";
-    }
+              << "\n";
+    LocalizationReport report;
+    report.command = "demo", report.out = out, report.force = force, report.plots = !a.no_plots, report.plot_title = preset.name;
+    report.sparse = a.sparse, report.seed = a.seed, report.filter_rate_hz = preset.fps / stride, report.template_width = a.template_width;
+    report.strings = {{"scenario", preset.name}};
+    report.numbers = {{"map_year", static_cast<double>(a.map_year)}, {"flight_year", static_cast<double>(a.flight_year)}};
+    report_localization(result, *backend, cfg, map.image.view(), map.metres_per_pixel, report, std::cout);
     std::printf("total %.1f s (maps %.1f s)\n", seconds_since(t0), maps_s);
 }
 

@@ -11,6 +11,7 @@
 #include "backend_env.hpp"
 #include "commands.hpp"
 #include "filter_model_options.hpp"
+#include "localization_report.hpp"
 #include "localize_inputs.hpp"
 #include "options.hpp"
 #include "progress.hpp"
@@ -19,7 +20,6 @@
 #include "trn/filter/flight_source.hpp"
 #include "trn/filter/localization.hpp"
 #include "trn/filter/nadir_warp.hpp"
-#include "trn/filter/report.hpp"
 #include "trn/io/output_folder.hpp"
 #include "trn/registry.hpp"
 #include "trn/sim/air_format.hpp"
@@ -69,12 +69,6 @@ CLI::Validator pair_in(double lo1, double hi1, double lo2, double hi2, const std
             return "";
         },
         what);
-}
-
-// Options left at "not given" (NaN) are left out of summary.json rather than written as null.
-std::map<std::string, double> without_unset(std::map<std::string, double> numbers) {
-    std::erase_if(numbers, [](const auto& kv) { return std::isnan(kv.second); });
-    return numbers;
 }
 
 void progress_bar(std::size_t done, std::size_t total) { draw_progress(done, total, "steps"); }
@@ -168,38 +162,28 @@ void localize(const LocalizeArgs& a) {
     // The start actually used, for the record (the first row's truth when not given).
     const double used_start_x = std::isfinite(start_x) || result.rows.empty() ? start_x : result.rows.front().truth_x;
     const double used_start_y = std::isfinite(start_y) || result.rows.empty() ? start_y : result.rows.front().truth_y;
-    io::open_output_folder(out, "localize", a.force);
-    filter::write_rows_csv(out + "/localization.csv", result.rows);
-    filter::write_summary_json(out + "/summary.json", result.summary,
-                               {{"backend", backend->info().name}, {"device", backend->info().device},
-                                {"backend_requested", a.backend}, {"conversion", cfg.conversion.to_string()},
-                                {"sampling", filter::to_string(cfg.sampling)}, {"dataset", dataset}, {"map", map_path},
-                                {"start", a.start.empty() && a.start_latlon.empty() ? "first row's MapX,MapY" : !a.start.empty() ? "--start " + a.start : "--start-latlon " + a.start_latlon},
-                                {"start_heading", std::isnan(a.start_heading_deg) ? "first magnetometer reading" : "--start-heading-deg"},
-                                {"scoring_density", a.sparse < 1 ? "random " + std::to_string(a.sparse) : "dense"},
-                                {"flight_json", in.has_flight_json ? "used" : "absent (camera, map and resolution from options)"},
-                                {"georeference", in.georeference.empty() ? "none" : in.georeference}},
-                               without_unset(filter::with_lock_numbers(result.summary, {{"seed", static_cast<double>(a.seed)}, {"filter_rate_hz", fps / stride},
-                                {"init_radius_m", cfg.init_radius_m}, {"reinit_radius_m", cfg.reinit_radius_m},
-                                {"start_x", used_start_x}, {"start_y", used_start_y}, {"particles", static_cast<double>(a.particles)},
-                                {"min_particles", static_cast<double>(a.min_particles)}, {"max_particles", static_cast<double>(a.max_particles)},
-                                {"rate_hz", a.rate_hz}, {"sparse", a.sparse}, {"metres_per_pixel", mpp},
-                                {"start_heading_deg", a.start_heading_deg}, {"heading_sd_deg", cfg.init_heading_sd_deg},
-                                {"template_width", static_cast<double>(a.template_width)}, {"camera_hfov_deg", in.camera.hfov_deg},
-                                {"max_tilt_deg", a.max_tilt_deg},
-                                {"final_estimate_lat", has_latlon ? result.rows.back().estimate_lat : NAN},
-                                {"final_estimate_lon", has_latlon ? result.rows.back().estimate_lon : NAN}})));
-    std::cout << filter::format_summary(result.summary) << filter::format_lock_summary(result.summary);
+    LocalizationReport report;
+    report.command = "localize", report.out = out, report.force = a.force, report.plots = !a.no_plots, report.plot_title = in.scenario;
+    report.sparse = a.sparse, report.seed = a.seed, report.filter_rate_hz = fps / stride, report.template_width = a.template_width;
+    report.strings = {{"backend_requested", a.backend}, {"dataset", dataset}, {"map", map_path},
+                      {"start", a.start.empty() && a.start_latlon.empty() ? "first row's MapX,MapY" : !a.start.empty() ? "--start " + a.start : "--start-latlon " + a.start_latlon},
+                      {"start_heading", std::isnan(a.start_heading_deg) ? "first magnetometer reading" : "--start-heading-deg"},
+                      {"flight_json", in.has_flight_json ? "used" : "absent (camera, map and resolution from options)"},
+                      {"georeference", in.georeference.empty() ? "none" : in.georeference}};
+    report.numbers = {{"init_radius_m", cfg.init_radius_m}, {"reinit_radius_m", cfg.reinit_radius_m},
+                      {"start_x", used_start_x}, {"start_y", used_start_y}, {"particles", static_cast<double>(a.particles)},
+                      {"min_particles", static_cast<double>(a.min_particles)}, {"max_particles", static_cast<double>(a.max_particles)},
+                      {"rate_hz", a.rate_hz}, {"sparse", a.sparse}, {"metres_per_pixel", mpp},
+                      {"start_heading_deg", a.start_heading_deg}, {"heading_sd_deg", cfg.init_heading_sd_deg},
+                      {"camera_hfov_deg", in.camera.hfov_deg}, {"max_tilt_deg", a.max_tilt_deg},
+                      {"final_estimate_lat", has_latlon ? result.rows.back().estimate_lat : NAN},
+                      {"final_estimate_lon", has_latlon ? result.rows.back().estimate_lon : NAN}};
     if (has_latlon) {
         char ll[96];
         std::snprintf(ll, sizeof ll, "lat %.7f lon %.7f", result.rows.back().estimate_lat, result.rows.back().estimate_lon);
-        std::cout << "final estimate: " << ll << " (" << in.georeference << ")\n";
+        report.after_summary = "final estimate: " + std::string(ll) + " (" + in.georeference + ")\n";
     }
-    std::cout << "per-step CSV: " << out << "/localization.csv\nsummary JSON: " << out << "/summary.json\n";
-    if (!a.no_plots) {
-        const filter::PlotFiles plots = filter::plot_run(out, result.rows, result.summary, map.image.view(), mpp, in.scenario);
-        std::cout << "plots: " << plots.trajectory_png << (plots.error_png.empty() ? "" : " " + plots.error_png) << "\n";
-    }
+    report_localization(result, *backend, cfg, map.image.view(), mpp, report, std::cout);
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include "sha256.hpp"
 #include "text_input.hpp"
 #include "trn/error.hpp"
+#include "trn/io/provenance.hpp"
 
 namespace trn::energy {
 namespace {
@@ -347,6 +348,7 @@ std::string rank_ratio_table_csv(const Comparison& c) {
 std::string comparison_json(const Comparison& c) {
     json j;
     j["trnkit_energy_comparison"] = 1;
+    io::add_provenance(j);
     j["config"] = {{"test", c.options.both ? "welch+student" : c.options.student ? "student" : "welch"}, {"energy", c.options.net ? "net" : "gross"},
                    {"alpha", c.options.alpha}, {"correction", "holm (per test)"}, {"ci", 0.95}, {"unit", c.unit},
                    {"rank_test", "mann-whitney-u (as R wilcox.test)"}, {"bootstrap", {{"resamples", c.options.bootstrap_resamples}, {"seed", 1}, {"ci", "percentile"}}},

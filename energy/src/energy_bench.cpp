@@ -11,6 +11,7 @@
 #include "trn/energy/stats.hpp"
 #include "trn/error.hpp"
 #include "trn/io/gnuplot.hpp"
+#include "trn/io/provenance.hpp"
 
 namespace trn::energy {
 
@@ -91,6 +92,7 @@ std::string bench_json(const BenchResult& res) {
     using nlohmann::json;
     json j;
     j["trnkit_energy_bench"] = 1;
+    io::add_provenance(j);
     j["sampler"] = res.sampler;
     j["period_s"] = res.period_s;
     j["clock"] = "monotonic";

@@ -12,6 +12,7 @@
 #include "sha256.hpp"
 #include "text_input.hpp"
 #include "trn/error.hpp"
+#include "trn/io/provenance.hpp"
 
 namespace trn::energy {
 namespace {
@@ -161,6 +162,7 @@ RunReport integrate_files(const std::string& log_path, const std::string& format
 std::string run_report_json(const RunReport& r) {
     json j;
     j["trnkit_energy_run"] = 1;
+    io::add_provenance(j);
     j["platform"] = r.platform;
     j["inputs"]["log"] = {{"path", r.log_path}, {"sha256", r.log_sha256}, {"format", r.log_format}, {"quantity", r.log_quantity},
                           {"samples", r.sampling.samples}, {"rate_hz", r.sampling.rate_hz}, {"gaps", r.sampling.gaps},

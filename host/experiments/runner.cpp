@@ -8,12 +8,12 @@
 
 #include "study.hpp"
 #include "world.hpp"
-#include "trn/build_info.hpp"
 #include "trn/error.hpp"
 #include "trn/parse_number.hpp"
 #include "trn/experiments/experiment.hpp"
 #include "trn/io/atomic_file.hpp"
 #include "trn/io/output_folder.hpp"
+#include "trn/io/provenance.hpp"
 #include "trn/registry.hpp"
 
 namespace trn::experiments {
@@ -61,9 +61,6 @@ Json read_json(const std::string& path) {
 
 // A job file is either complete or absent (a run killed while writing leaves the old state).
 void write_json(const std::string& path, const Json& j) { io::write_file_atomic(path, j.dump(1) + "\n"); }
-
-// The commit the library was built from (generated at build time; no git process at run time).
-std::string git_commit() { return std::string(build_info().git_commit); }
 
 void progress_bar(std::size_t done, std::size_t total, const std::string& what) {
     const int width = 30, filled = total ? static_cast<int>(width * done / total) : width;
@@ -132,8 +129,9 @@ std::size_t run_experiment(const ExperimentOptions& o) {
                 const auto t0 = std::chrono::steady_clock::now();
                 Json result = study->run_job(config, params, context);
                 const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-                write_json(job_path(params), Json{{"config", config}, {"params", params}, {"result", result}, {"wall_s", wall},
-                                                  {"backend_device", backend->info().device}});
+                Json job{{"config", config}, {"params", params}, {"result", result}, {"wall_s", wall}, {"backend_device", backend->info().device}};
+                io::add_provenance(job);
+                write_json(job_path(params), job);
             }
             if (o.progress) progress_bar(todo.size(), todo.size(), "done");
         }
@@ -163,9 +161,9 @@ std::size_t run_experiment(const ExperimentOptions& o) {
         markdown = "**PARTIAL RUN: " + std::to_string(outputs.size()) + " of " + std::to_string(jobs.size()) +
                    " jobs finished; cells are means over the finished jobs only.**\n\n" + markdown;
     io::write_file_atomic(out + "/results.md", markdown);
-    Json prov{{"study", o.study}, {"seed", o.seed}, {"git_commit", git_commit()}, {"trnkit_version", std::string(build_info().version)},
-              {"backend", o.backend},
+    Json prov{{"study", o.study}, {"seed", o.seed}, {"backend", o.backend},
               {"backend_devices", devices}, {"jobs", jobs.size()}, {"jobs_merged", outputs.size()}, {"job_wall_s_total", wall_s}, {"config", config}};
+    io::add_provenance(prov);
     write_json(out + "/provenance.json", prov);
     std::cout << markdown << "\ntables, plots and provenance.json in " << out << " (" << jobs.size() << " jobs, " << wall_s
               << " s of job time)\n";

@@ -9,10 +9,10 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "trn/build_info.hpp"
 #include "trn/error.hpp"
 #include "trn/io/atomic_file.hpp"
 #include "trn/io/gnuplot.hpp"
+#include "trn/io/provenance.hpp"
 
 namespace trn::filter {
 namespace {
@@ -94,8 +94,7 @@ void write_summary_json(const std::string& path, const LocalizationSummary& s, c
     j["frames_too_oblique"] = s.frames_too_oblique;
     j["particles_off_map"] = s.counters.particles_off_map;
     j["reinitialisations"] = s.counters.reinitialisations;
-    j["trnkit_version"] = std::string(build_info().version);  // provenance: what produced these numbers
-    j["git_commit"] = std::string(build_info().git_commit);
+    io::add_provenance(j);  // what produced these numbers
     for (const auto& [k, v] : strings) j[k] = v;
     for (const auto& [k, v] : numbers) j[k] = num(v);
     io::write_file_atomic(path, j.dump(2) + '\n');

@@ -12,6 +12,7 @@
 
 #include "trn/error.hpp"
 #include "trn/io/atomic_file.hpp"
+#include "trn/io/provenance.hpp"
 
 namespace trn::sim {
 namespace {
@@ -188,6 +189,7 @@ void write_flight_info(const std::string& path, const FlightInfo& info) {
     j["rendered_year"] = info.rendered_year;
     j["seed"] = info.seed;
     if (info.frames) j["frames"] = info.frames;
+    io::add_provenance(j);
     io::write_file_atomic(path, j.dump(2) + "\n");
 }
 

@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "cli_process.hpp"
+#include "trn/build_info.hpp"
 #include "trn/energy/parsers.hpp"
 #include "trn/io/gnuplot.hpp"
 
@@ -42,6 +43,11 @@ TEST(EnergyBenchCli, CpuAndCpuRefWithTheFakeNvmlSampler) {
     ASSERT_EQ(r.code, 0) << cmd << "\n" << r.output;
     const auto bench = read_json(out / "bench.json");
     EXPECT_EQ(bench["clock"], "monotonic");
+    // Provenance (issue 13): which build wrote the bench and each run report.
+    for (const auto& j : {bench, read_json(out / "run-cpu.json")}) {
+        EXPECT_EQ(j.value("trnkit_version", ""), std::string(build_info().version));
+        EXPECT_EQ(j.value("git_commit", ""), std::string(build_info().git_commit));
+    }
     EXPECT_NE(bench["sampler"].get<std::string>().find("nvml:0:energy (Fake GPU"), std::string::npos);
     ASSERT_EQ(bench["rows"].size(), 2u);
     EXPECT_EQ(bench["rows"][0]["backend"], "cpu");
