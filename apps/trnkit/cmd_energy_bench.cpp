@@ -58,7 +58,7 @@ void add_energy_bench_command(CLI::App* energy) {
     c->add_option("--source", a->source, "Power source: hwmon:NAME[:CH], rapl:NAME or nvml:INDEX[:power|:energy] (energy sample --list)")->required();
     c->add_option("-b,--backend", a->backends, "Backends to run, in order (repeatable or comma-separated)")->delimiter(',')->capture_default_str();
     c->add_option("--kernel", a->kernel, "sobel or ncc")->capture_default_str()->check(CLI::IsMember({"sobel", "ncc"}));
-    c->add_option("--size", a->size, "Sobel image size: 480p, 720p or 1080p")->capture_default_str()->check(CLI::IsMember({"480p", "720p", "1080p"}));
+    c->add_option("--size", a->size, "Sobel image size: 480p, 720p or 1080p")->capture_default_str()->check(CLI::IsMember(kFrameSizeNames));
     c->add_option("--particles", a->particles, "NCC: particles scored per frame")->capture_default_str()->transform(whole_in(1, kMaxParticles));
     c->add_option("-k,--frames", a->frames, "Frames per backend")->capture_default_str()->transform(whole_in(1, 1000000));
     c->add_option("--repeat", a->repeat, "Kernel calls per frame (frames shorter than a few sample periods cannot be measured alone)")

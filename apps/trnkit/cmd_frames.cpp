@@ -26,7 +26,7 @@ void add_frames_command(CLI::App& app) {
     auto a = std::make_shared<Args>();
     auto* cmd = app.add_subcommand("frames", "Run a kernel K times with idle gaps and a sync pattern, writing frame markers (energy studies)");
     cmd->add_option("--kernel", a->kernel, "sobel or ncc")->capture_default_str()->check(CLI::IsMember({"sobel", "ncc"}));
-    cmd->add_option("--size", a->size, "Sobel image size: 480p, 720p or 1080p")->capture_default_str();
+    cmd->add_option("--size", a->size, "Sobel image size: 480p, 720p or 1080p")->capture_default_str()->check(CLI::IsMember(kFrameSizeNames));
     cmd->add_option("--particles", a->particles, "NCC: particles scored per frame")->capture_default_str()->transform(whole_in(1, kMaxParticles));
     cmd->add_option("-b,--backend", a->backend, "Backend: cpu-ref, cpu, opencl[:N|:name], vulkan[:N|:name]")->capture_default_str();
     cmd->add_option("-k,--frames", a->frames, "Frames (K)")->capture_default_str()->transform(whole_in(1, 1000000));
@@ -39,7 +39,6 @@ void add_frames_command(CLI::App& app) {
         ->check(real_in(0, 60000));
     cmd->add_option("-o,--out", a->out, "Marker file to write")->capture_default_str();
     cmd->callback([a] {
-        if (a->particles <= 0) throw Error("--particles must be positive");
         io::check_output_file(a->out, "--out");  // before the run, which takes minutes
         limits::check_count("--particles", a->particles, limits::kMaxParticles, limits::kParticleBytes);
         auto backend = default_registry().create(a->backend, backend_options_from_environment());

@@ -81,6 +81,7 @@ TEST_F(CliInput, CountsRefuseSignsOverflowAndOutOfRangeNamingTheOption) {
         {"localize --dataset " + path("none") + " --particles 0", "--particles: '0' is outside [1, 4194304]"},
         {"frames --backend nosuch --frames 0", "--frames: '0' is outside"},
         {"frames --backend nosuch --particles -5", "--particles: '-5'"},
+        {"frames --backend nosuch --size 4k", "--size: 4k not in {480p,720p,1080p}"},
         {"check -n 0x10", "--particles: '0x10' is not a whole number"},
         {"experiment metrics --backend nosuch --out " + path("e") + " --shard 1/99999999999999999999",
          "--shard '1/99999999999999999999' must be i/n"},
