@@ -71,7 +71,7 @@ protected:
 
 TEST_F(OpenClCli, ScoreMatchesTheCpuBackend) {
     for (const char* backend : {"cpu", "opencl"})
-        ASSERT_EQ(run(std::string(TRN_CLI) + " score --map " + path("map.png") + " --template " + path("templ.png") +
+        ASSERT_EQ(run(std::string(TRNKIT_EXE) + " score --map " + path("map.png") + " --template " + path("templ.png") +
                       " --poses " + path("poses.csv") + " --backend " + backend + " --out " + path(backend) + ".csv"),
                   0)
             << "trnkit score --backend " << backend;
@@ -91,7 +91,7 @@ TEST_F(OpenClCli, ScoreMatchesTheCpuBackend) {
 
 TEST_F(OpenClCli, SobelWritesTheSameGradientsAsTheCpuBackend) {
     for (const char* backend : {"cpu", "opencl"})
-        ASSERT_EQ(run(std::string(TRN_CLI) + " sobel " + path("map.png") + " --backend " + backend + " --out " + path(backend)), 0)
+        ASSERT_EQ(run(std::string(TRNKIT_EXE) + " sobel " + path("map.png") + " --backend " + backend + " --out " + path(backend)), 0)
             << "trnkit sobel --backend " << backend;
     for (const char* file : {"gx.png", "gy.png"}) {
         const std::string cpu = read_bytes(dir_.path() / "cpu" / file), ocl = read_bytes(dir_.path() / "opencl" / file);
