@@ -1,13 +1,18 @@
 // The studies made of whole simulated flights localized by DPC-PFL:
-//   conversion [3.5, Tables 3.7-3.11]: scenario presets x conversion functions x seeds;
-//   robustness [3.5.3, Table 3.12, Fig 3.7]: the parametric functions on maps 0, 2, 4, 6 years older
-//     than the world the camera sees;
+//   conversion [3.5, Tables 3.7-3.12]: scenario presets x conversion functions x map ages x runs,
+//     every cell averaged over the four map years as the dissertation does;
+//   robustness [3.5.3, Table 3.12, Fig 3.7]: the parametric functions alone on the four map years;
 //   odometry   [3.6, Figs 3.8-3.9]: filter vs visual-odometry error, final-error and slope ratios.
-// One job = one flight (preset, conversion, map age, run index).
+// One job = one flight (preset, conversion, map age, run index). As in the dissertation (3.5.3: the
+// flight imagery is of 2008, the maps of 2008-2014) the frames are rendered from the 2008 world and
+// matched against the map of 2008 + map age, i.e. a map 0-6 years NEWER than the frames.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <map>
 
+#include "dissertation_tables.hpp"
+#include "flight_outputs.hpp"
 #include "study.hpp"
 #include "table.hpp"
 #include "trn/filter/flight_source.hpp"
@@ -19,10 +24,8 @@
 namespace trn::experiments {
 namespace {
 
-const std::vector<std::string> kAllPresets{"FL-200", "FL-300", "FR-200", "FR-300", "FC-200", "FC-300",
-                                           "UL-200", "UL-300", "UR-200", "UR-300", "UC-200", "UC-300"};
-const std::vector<std::string> kParametric{"rectifying:0.2", "rectifying:0.1", "rectifying:0",  "rectifying:-0.1", "rectifying:-0.2",
-                                           "logistic:0.7",   "logistic:0.4",   "logistic:0.2", "logistic:0.1",    "logistic:0.05"};
+const std::vector<std::string>& kAllPresets = diss::scenario_names();
+const std::vector<std::string>& kParametric = diss::parametric_functions();
 constexpr int kFlightYear = 2008;
 
 std::string safe_id(std::string s) {
@@ -87,46 +90,109 @@ Json fly(const Json& c, const std::string& preset_name, const std::string& conve
             {"odometry_inconsistent_steps", s.counters.odometry_inconsistent_steps}};
 }
 
-double get(const Json& j, const char* key) { return j.at(key).is_null() ? NAN : j.at(key).get<double>(); }
-
-// Mean of `key` over the jobs matching preset / conversion / age (any when empty / -1).
-double mean_of(const std::vector<Json>& outputs, const char* key, const std::string& preset, const std::string& conversion, int age = -1) {
-    double sum = 0;
-    int n = 0;
-    for (const Json& o : outputs) {
-        const Json& p = o.at("params");
-        if ((!preset.empty() && p.at("preset") != preset) || (!conversion.empty() && p.at("conversion") != conversion) ||
-            (age >= 0 && p.at("map_age") != age))
-            continue;
-        const double v = get(o.at("result"), key);
-        if (std::isfinite(v)) sum += v, ++n;
-    }
-    return n ? sum / n : NAN;
-}
-
 std::vector<std::string> strings(const Json& j) { return j.get<std::vector<std::string>>(); }
 
-// ------------------------------------------------------------------------------------------------
-// Published numbers (Tables 3.7, 3.8, 3.10, 3.11), per preset in kAllPresets order.
-const double kLogistic[12][5] = {{39.27, 37.41, 55.91, 225.41, 238.70}, {26.74, 26.09, 27.66, 25.63, 160.18}, {62.71, 52.73, 74.06, 62.36, 58.20},
-                                 {64.34, 59.25, 31.83, 32.54, 58.48},   {57.32, 68.53, 92.39, 102.86, 49.36}, {95.63, 112.06, 126.93, 156.09, 140.20},
-                                 {27.17, 27.64, 26.56, 25.46, 28.27},   {27.27, 25.88, 25.95, 26.60, 27.57},  {54.69, 42.43, 37.09, 66.53, 52.23},
-                                 {50.00, 43.55, 41.27, 45.07, 55.10},   {70.42, 56.57, 49.09, 48.38, 65.56},  {73.71, 64.74, 54.29, 63.16, 67.49}};
-const double kRectifying[12][5] = {{39.97, 37.66, 50.79, 145.09, 233.22}, {27.01, 25.74, 27.14, 56.05, 184.69}, {59.64, 67.15, 72.57, 72.03, 79.35},
-                                   {59.50, 51.41, 40.72, 29.18, 35.53},   {58.26, 73.73, 78.47, 67.71, 26.03},  {92.44, 116.12, 125.66, 142.34, 112.88},
-                                   {29.81, 27.40, 26.67, 27.03, 26.61},   {26.66, 26.34, 25.01, 25.60, 25.27},  {58.50, 44.85, 36.39, 42.53, 49.48},
-                                   {53.54, 42.82, 39.55, 39.92, 42.68},   {78.07, 72.78, 49.43, 50.33, 48.05},  {76.03, 67.38, 57.79, 56.38, 61.53}};
-const double kImprovement[12][3] = {{7.79, 15.59, 7.24},   {6.47, 32.40, 24.35},  {14.77, 10.18, -4.00}, {6.37, 85.07, 73.99},
-                                    {2.48, -40.14, -41.59}, {-2.58, -23.61, -21.58}, {12.10, 65.12, 47.30}, {12.37, 48.47, 32.12},
-                                    {22.90, 224.89, 164.34}, {6.49, 98.27, 86.19}, {0.81, 95.25, 93.67},  {2.79, 63.48, 59.04}};
-const double kSpeedup[12][3] = {{1.06, 2.41, 2.26}, {1.07, 2.32, 2.17}, {1.11, 3.23, 2.92}, {1.14, 3.36, 2.95}, {1.00, 2.66, 2.65}, {0.99, 2.51, 2.53},
-                                {1.14, 3.76, 3.31}, {1.12, 3.40, 3.03}, {1.14, 3.66, 3.21}, {1.10, 3.37, 3.07}, {1.01, 3.62, 3.58}, {1.02, 3.89, 3.83}};
-const int kRankScore[10] = {75, 54, 56, 69, 88, 82, 68, 52, 58, 58};
-const char* kRank[10] = {"8", "2", "3", "7", "10", "9", "6", "1", "4-5", "4-5"};
-const double kRobust[10][3] = {{3.14, 54.16, 5.8}, {4.09, 52.36, 7.8}, {4.14, 53.64, 7.7}, {26.06, 73.73, 35.4}, {42.09, 86.80, 48.5},
-                               {3.20, 54.95, 5.8}, {4.29, 54.45, 7.9}, {8.96, 53.08, 16.9}, {28.99, 62.85, 46.1}, {44.49, 77.11, 57.7}};
-
 int preset_index(const std::string& p) { return static_cast<int>(std::find(kAllPresets.begin(), kAllPresets.end(), p) - kAllPresets.begin()); }
+
+// Both sweeps fly preset x function x map age x run; a job's id names all four
+// ("UR-200-logistic_0.2-age4-3"), so one flight has the same id in either study.
+std::vector<Json> flight_jobs(const Json& c) {
+    std::vector<Json> out;
+    for (const auto& p : strings(c.at("presets")))
+        for (const auto& f : strings(c.at("conversions")))
+            for (int age : c.at("map_ages").get<std::vector<int>>())
+                for (int r = 0; r < c.at("runs").get<int>(); ++r)
+                    out.push_back({{"id", p + "-" + safe_id(f) + "-age" + std::to_string(age) + "-" + std::to_string(r)},
+                                   {"preset", p}, {"conversion", f}, {"map_age", age}, {"run", r}});
+    return out;
+}
+
+std::string signed_percent(double v) { return (v > 0 ? "+" : "") + percent(v, 1); }
+
+std::string map_years(const Json& config) {
+    std::string years;
+    for (int a : config.at("map_ages").get<std::vector<int>>()) years += (years.empty() ? "" : "/") + std::to_string(kFlightYear + a);
+    return years;
+}
+
+// Table 3.12 and Fig 3.7 from every function of the configuration over the map ages.
+std::string robustness_table(const std::vector<Json>& o, const MergeContext& mc) {
+    const auto ages = mc.config.at("map_ages").get<std::vector<int>>();
+    Table t;
+    t.title = "Table 3.12: localization error over the maps of " + map_years(mc.config) + ", frames rendered from the " +
+              std::to_string(kFlightYear) + " world (maps 0-" + std::to_string(ages.back()) +
+              " years newer than the frames, as in the dissertation); SD over the map years of the mean error";
+    t.header = {"Function", "SD m (ours)", "(diss.)", "Mean error m (ours)", "(diss.)", "RSD (ours)", "(diss.)", "Other-year loss (ours)"};
+    std::vector<std::vector<double>> cols{{}};
+    for (int a : ages) cols[0].push_back(kFlightYear + a);
+    std::vector<std::string> titles;
+    for (const auto& f : strings(mc.config.at("conversions"))) {
+        std::vector<double> per_age;
+        for (int a : ages) per_age.push_back(mean_of(o, "filter_mean_error_m", at_age("", f, a)));
+        double mean = 0, var = 0;
+        for (double v : per_age) mean += v / per_age.size();
+        for (double v : per_age) var += (v - mean) * (v - mean) / (per_age.size() - 1);
+        const double sd = std::sqrt(var);
+        const auto k = std::find(kParametric.begin(), kParametric.end(), f) - kParametric.begin();
+        const bool published = k < 10;
+        t.rows.push_back({f, fmt(sd), published ? fmt(diss::kTable312[k].sd) : "-", fmt(mean), published ? fmt(diss::kTable312[k].accuracy) : "-",
+                          percent(100 * sd / mean, 1), published ? percent(diss::kTable312[k].rsd, 1) : "-",
+                          signed_percent(out_of_date_loss_percent(o, f))});
+        cols.push_back(per_age);
+        titles.push_back(f);
+    }
+    t.write(mc.out, "table_3_12");
+    if (mc.plots)
+        line_plot(mc.out + "/fig_3_7.png", "Fig 3.7: mean localization error vs map year (flight imagery " + std::to_string(kFlightYear) + ")",
+                  "map year", "mean error (m)", cols, titles, {.x_tic_step = 2, .vertical_lines = {}});
+    return t.markdown();
+}
+
+// The paper's and the abstract's summary claims, recomputed from the jobs (so they follow the sweep).
+std::string claims_table(const std::vector<Json>& o, const MergeContext& mc, bool with_linear) {
+    Table t;
+    t.title = "Summary claims recomputed from these jobs (ours | diss.)";
+    t.header = {"Claim", "Ours", "(diss.)"};
+    const auto presets = strings(mc.config.at("presets"));
+    if (with_linear) {
+        const WinCount ours = scenarios_where_more_accurate(o, presets, "logistic:0.2", "linear");
+        int published = 0;  // Table 3.10's positive "Logistic / Linear" cells over the same presets
+        for (const auto& p : presets) published += diss::kTable310[preset_index(p)][1] > 0;
+        t.rows.push_back({"Scenarios where logistic:0.2 is more accurate than linear", std::to_string(ours.wins) + " of " + std::to_string(ours.scenarios),
+                          std::to_string(published) + " of " + std::to_string(presets.size()) + " (Table 3.10; paper: 10 of 12)"});
+    }
+    t.rows.push_back({"Mean error on the maps of other years vs the flight's own year (" + map_years(mc.config) + ", every function)",
+                      signed_percent(out_of_date_loss_percent(o, "")),
+                      "~30 % precision loss on out-of-date maps (paper abstract; per-year values only in Fig 3.7, not printed)"});
+    t.write(mc.out, "table_claims");
+    return t.markdown();
+}
+
+// Evidence that the printed Tables 3.7 and 3.8 carry each other's captions (dissertation_tables.hpp).
+std::string label_check_table(const MergeContext& mc) {
+    const diss::LabelCheck c = diss::check_family_labels();
+    Table t;
+    t.title = "Which printed table is which family: column means vs Table 3.12, re-ranking vs Table 3.9 (published numbers only)";
+    t.header = {"Function", "Table 3.12 accuracy", "Column mean, captions as printed", "Column mean, swapped", "Table 3.9 score",
+                "Re-ranked, as printed", "Re-ranked, swapped"};
+    for (int f = 0; f < 10; ++f)
+        t.rows.push_back({kParametric[f], fmt(diss::kTable312[f].accuracy), fmt(c.as_printed.column_means[f]), fmt(c.swapped.column_means[f]),
+                          std::to_string(diss::kTable39Score[f]), std::to_string(c.as_printed.rank_sums[f]), std::to_string(c.swapped.rank_sums[f])});
+    t.rows.push_back({"sum abs. difference / equal to the cent", "", fmt(c.as_printed.sum_abs_mean_difference) + " / " + std::to_string(c.as_printed.exact_means),
+                      fmt(c.swapped.sum_abs_mean_difference) + " / " + std::to_string(c.swapped.exact_means), "max abs. difference",
+                      std::to_string(c.as_printed.max_score_difference), std::to_string(c.swapped.max_score_difference)});
+    t.write(mc.out, "table_label_check");
+    return t.markdown();
+}
+
+// The conversion functions of the configuration, in `candidates` order.
+std::vector<std::string> configured(const Json& config, const std::vector<std::string>& candidates) {
+    const auto have = strings(config.at("conversions"));
+    std::vector<std::string> out;
+    for (const auto& f : candidates)
+        if (std::find(have.begin(), have.end(), f) != have.end()) out.push_back(f);
+    return out;
+}
 
 class ConversionStudy : public Study {
 public:
@@ -135,66 +201,71 @@ public:
         Json c = flight_config(quick);
         c["presets"] = quick ? std::vector<std::string>{"UR-200"} : kAllPresets;
         std::vector<std::string> f{"linear", "softmax"};
-        f.insert(f.end(), kParametric.begin(), kParametric.end());
+        // --quick: the baselines, the recommended function and each family's two ends on the
+        // extreme map years, as many flights (12) as the single-map-year --quick had.
+        if (quick)
+            f.insert(f.end(), {"rectifying:0.2", "rectifying:-0.2", "logistic:0.2", "logistic:0.05"});
+        else
+            f.insert(f.end(), kParametric.begin(), kParametric.end());
         c["conversions"] = f;
         c["runs"] = quick ? 1 : 10;
-        c["map_age"] = 2;
+        // Tables 3.7-3.11 average over the four map years (their column means are Table 3.12's).
+        c["map_ages"] = quick ? std::vector<int>{0, 6} : std::vector<int>{0, 2, 4, 6};
         return c;
     }
-    std::vector<Json> jobs(const Json& c) const override {
-        std::vector<Json> out;
-        for (const auto& p : strings(c.at("presets")))
-            for (const auto& f : strings(c.at("conversions")))
-                for (int r = 0; r < c.at("runs").get<int>(); ++r)
-                    out.push_back({{"id", p + "-" + safe_id(f) + "-" + std::to_string(r)}, {"preset", p}, {"conversion", f}, {"map_age", c.at("map_age")}, {"run", r}});
-        return out;
-    }
+    std::vector<Json> jobs(const Json& c) const override { return flight_jobs(c); }
     Json run_job(const Json& c, const Json& p, JobContext& ctx) const override {
         return fly(c, p.at("preset"), p.at("conversion"), p.at("map_age"), p.at("run"), ctx, false);
     }
     std::string merge(const std::vector<Json>& o, const MergeContext& mc) const override {
         const auto presets = strings(mc.config.at("presets"));
-        const std::string runs = std::to_string(mc.config.at("runs").get<int>());
+        const std::string per_cell = std::to_string(mc.config.at("runs").get<int>()) + " runs x " +
+                                     std::to_string(mc.config.at("map_ages").size()) + " map years (" + map_years(mc.config) + ")";
         std::string md;
-        for (int fam = 0; fam < 2; ++fam) {
+        for (const diss::Family fam : {diss::Family::Logistic, diss::Family::Rectifying}) {
+            const bool logistic = fam == diss::Family::Logistic;
+            const std::vector<std::string> family(kParametric.begin() + (logistic ? 5 : 0), kParametric.begin() + (logistic ? 10 : 5));
             Table t;
-            t.title = std::string("Table 3.") + (fam ? "8" : "7") + ": mean localization error (m), " + (fam ? "rectifying" : "logistic") +
-                      " conversion, mean of " + runs + " runs per cell (ours | diss.)";
+            t.title = std::string("Table 3.") + (logistic ? "7" : "8") + ": mean localization error (m), " + (logistic ? "logistic" : "rectifying") +
+                      " conversion, mean of " + per_cell + " per cell (ours | diss.: the body printed as Table 3." + (logistic ? "8" : "7") +
+                      ", whose caption is swapped; see the label check)";
             t.header = {"Scenario"};
-            for (int k = 0; k < 5; ++k) {
-                const std::string f = kParametric[(fam ? 0 : 5) + k];
+            const auto functions = configured(mc.config, family);
+            for (const auto& f : functions) {
                 t.header.push_back(f + " (ours)");
                 t.header.push_back("(diss.)");
             }
             for (const auto& p : presets) {
                 std::vector<std::string> row{p};
-                for (int k = 0; k < 5; ++k) {
-                    row.push_back(fmt(mean_of(o, "filter_mean_error_m", p, kParametric[(fam ? 0 : 5) + k])));
-                    row.push_back(fmt((fam ? kRectifying : kLogistic)[preset_index(p)][k]));
+                for (const auto& f : functions) {
+                    row.push_back(fmt(mean_of(o, "filter_mean_error_m", {p, f})));
+                    row.push_back(fmt(diss::mean_error(f, preset_index(p))));
                 }
                 t.rows.push_back(row);
             }
-            t.write(mc.out, fam ? "table_3_8" : "table_3_7");
+            t.write(mc.out, logistic ? "table_3_7" : "table_3_8");
             md += t.markdown() + "\n";
         }
-        // Table 3.9: rank the ten parametric functions within each scenario (1 = most accurate).
-        std::vector<double> score(10, 0);
+        md += label_check_table(mc) + "\n";
+        // Table 3.9: rank the configured parametric functions within each scenario (1 = most accurate).
+        const auto ranked = configured(mc.config, kParametric);
+        std::vector<std::vector<double>> errors;
         for (const auto& p : presets) {
-            std::vector<std::pair<double, int>> acc;
-            for (int k = 0; k < 10; ++k) acc.push_back({mean_of(o, "filter_mean_error_m", p, kParametric[k]), k});
-            std::sort(acc.begin(), acc.end());
-            for (int r = 0; r < 10; ++r) score[acc[r].second] += r + 1;
+            errors.emplace_back();
+            for (const auto& f : ranked) errors.back().push_back(mean_of(o, "filter_mean_error_m", {p, f}));
         }
-        std::vector<int> order(10);
-        for (int k = 0; k < 10; ++k) order[k] = k;
-        std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return score[a] < score[b]; });
+        const std::vector<int> score = diss::rank_sums(errors);
+        std::vector<std::size_t> order(ranked.size());
+        for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+        std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return score[a] < score[b]; });
         Table r;
-        r.title = "Table 3.9: conversion function ranking by accuracy (sum of per-scenario ranks over " + std::to_string(presets.size()) +
-                  " scenario(s); the dissertation sums over 12)";
+        r.title = "Table 3.9: conversion function ranking by accuracy (sum of per-scenario ranks of " + std::to_string(ranked.size()) +
+                  " functions over " + std::to_string(presets.size()) + " scenario(s); the dissertation ranks 10 over 12)";
         r.header = {"Function", "Score (ours)", "Rank (ours)", "Score (diss.)", "Rank (diss.)"};
-        for (int k = 0; k < 10; ++k) {
-            const int rank = static_cast<int>(std::find(order.begin(), order.end(), k) - order.begin()) + 1;
-            r.rows.push_back({kParametric[k], fmt(score[k], 0), std::to_string(rank), std::to_string(kRankScore[k]), kRank[k]});
+        for (std::size_t k = 0; k < ranked.size(); ++k) {
+            const auto rank = std::find(order.begin(), order.end(), k) - order.begin() + 1;
+            const auto d = std::find(kParametric.begin(), kParametric.end(), ranked[k]) - kParametric.begin();
+            r.rows.push_back({ranked[k], fmt(score[k], 0), std::to_string(rank), std::to_string(diss::kTable39Score[d]), diss::kTable39Rank[d]});
         }
         r.write(mc.out, "table_3_9");
         md += r.markdown() + "\n";
@@ -208,12 +279,12 @@ public:
             std::vector<double> sum(3, 0), pub(3, 0);
             int n = 0;
             for (const auto& p : presets) {
-                const double lin = mean_of(o, key, p, "linear"), soft = mean_of(o, key, p, "softmax"), logi = mean_of(o, key, p, "logistic:0.2");
+                const double lin = mean_of(o, key, {p, "linear"}), soft = mean_of(o, key, {p, "softmax"}), logi = mean_of(o, key, {p, "logistic:0.2"});
                 const double v[3] = {which ? lin / soft : (lin / soft - 1) * 100, which ? lin / logi : (lin / logi - 1) * 100,
                                      which ? soft / logi : (soft / logi - 1) * 100};
                 std::vector<std::string> row{p};
                 for (int k = 0; k < 3; ++k) {
-                    const double published = (which ? kSpeedup : kImprovement)[preset_index(p)][k];
+                    const double published = (which ? diss::kTable311 : diss::kTable310)[preset_index(p)][k];
                     row.push_back(which ? fmt(v[k]) : percent(v[k]));
                     row.push_back(which ? fmt(published) : percent(published));
                     sum[k] += v[k], pub[k] += published;
@@ -230,6 +301,9 @@ public:
             t.write(mc.out, which ? "table_3_11" : "table_3_10");
             md += t.markdown() + "\n";
         }
+        // The same flights also give Table 3.12 (it is the robustness study's table over all functions).
+        md += robustness_table(o, mc) + "\n";
+        md += claims_table(o, mc, true);
         return md;
     }
 };
@@ -245,45 +319,12 @@ public:
         c["runs"] = quick ? 1 : 10;
         return c;
     }
-    std::vector<Json> jobs(const Json& c) const override {
-        std::vector<Json> out;
-        for (const auto& p : strings(c.at("presets")))
-            for (const auto& f : strings(c.at("conversions")))
-                for (int age : c.at("map_ages").get<std::vector<int>>())
-                    for (int r = 0; r < c.at("runs").get<int>(); ++r)
-                        out.push_back({{"id", p + "-" + safe_id(f) + "-age" + std::to_string(age) + "-" + std::to_string(r)},
-                                       {"preset", p}, {"conversion", f}, {"map_age", age}, {"run", r}});
-        return out;
-    }
+    std::vector<Json> jobs(const Json& c) const override { return flight_jobs(c); }
     Json run_job(const Json& c, const Json& p, JobContext& ctx) const override {
         return fly(c, p.at("preset"), p.at("conversion"), p.at("map_age"), p.at("run"), ctx, false);
     }
     std::string merge(const std::vector<Json>& o, const MergeContext& mc) const override {
-        const auto ages = mc.config.at("map_ages").get<std::vector<int>>();
-        Table t;
-        t.title = "Table 3.12: localization error over maps 0/2/4/6 years older than the flight (SD over the map ages of the mean error)";
-        t.header = {"Function", "SD m (ours)", "(diss.)", "Mean error m (ours)", "(diss.)", "RSD (ours)", "(diss.)"};
-        std::vector<std::vector<double>> cols{{}};
-        for (int a : ages) cols[0].push_back(kFlightYear + a);
-        std::vector<std::string> titles;
-        for (const auto& f : strings(mc.config.at("conversions"))) {
-            std::vector<double> per_age;
-            for (int a : ages) per_age.push_back(mean_of(o, "filter_mean_error_m", "", f, a));
-            double mean = 0, var = 0;
-            for (double v : per_age) mean += v / per_age.size();
-            for (double v : per_age) var += (v - mean) * (v - mean) / (per_age.size() - 1);
-            const double sd = std::sqrt(var);
-            const int k = static_cast<int>(std::find(kParametric.begin(), kParametric.end(), f) - kParametric.begin());
-            t.rows.push_back({f, fmt(sd), k < 10 ? fmt(kRobust[k][0]) : "-", fmt(mean), k < 10 ? fmt(kRobust[k][1]) : "-",
-                              percent(100 * sd / mean, 1), k < 10 ? percent(kRobust[k][2], 1) : "-"});
-            cols.push_back(per_age);
-            titles.push_back(f);
-        }
-        t.write(mc.out, "table_3_12");
-        if (mc.plots)
-            line_plot(mc.out + "/fig_3_7.png", "Fig 3.7: mean localization error vs map year (flight imagery 2008)", "map year",
-                      "mean error (m)", cols, titles, {.x_tic_step = 2, .vertical_lines = {}});
-        return t.markdown();
+        return robustness_table(o, mc) + "\n" + claims_table(o, mc, false);
     }
 };
 

@@ -1,0 +1,42 @@
+#include "flight_outputs.hpp"
+
+#include <cmath>
+
+namespace trn::experiments {
+
+double get(const Json& result, const char* key) { return result.at(key).is_null() ? NAN : result.at(key).get<double>(); }
+
+double mean_of(const std::vector<Json>& outputs, const char* key, const FlightCell& cell) {
+    double sum = 0;
+    int n = 0;
+    for (const Json& o : outputs) {
+        const Json& p = o.at("params");
+        const int age = p.at("map_age");
+        if ((!cell.preset.empty() && p.at("preset") != cell.preset) || (!cell.conversion.empty() && p.at("conversion") != cell.conversion) ||
+            age < cell.min_age || age > cell.max_age)
+            continue;
+        const double v = get(o.at("result"), key);
+        if (std::isfinite(v)) sum += v, ++n;
+    }
+    return n ? sum / n : NAN;
+}
+
+WinCount scenarios_where_more_accurate(const std::vector<Json>& outputs, const std::vector<std::string>& presets, const std::string& better,
+                                       const std::string& than) {
+    WinCount count;
+    for (const auto& p : presets) {
+        const double a = mean_of(outputs, "filter_mean_error_m", {p, better}), b = mean_of(outputs, "filter_mean_error_m", {p, than});
+        if (std::isnan(a) || std::isnan(b)) continue;
+        ++count.scenarios;
+        count.wins += a < b;
+    }
+    return count;
+}
+
+double out_of_date_loss_percent(const std::vector<Json>& outputs, const std::string& conversion) {
+    const double same_year = mean_of(outputs, "filter_mean_error_m", at_age("", conversion, 0));
+    const double other_years = mean_of(outputs, "filter_mean_error_m", {"", conversion, 1});
+    return 100 * (other_years / same_year - 1);
+}
+
+}  // namespace trn::experiments

@@ -1,0 +1,38 @@
+#pragma once
+// Reading the outputs of flight jobs ({"params": {preset, conversion, map_age, run}, "result": {...}})
+// for the conversion, robustness and odometry tables, and the claims computed from them.
+#include <climits>
+#include <string>
+#include <vector>
+
+#include "study.hpp"
+
+namespace trn::experiments {
+
+// A number from a job's result; NaN where the job stored null (a non-finite value).
+double get(const Json& result, const char* key);
+
+// Which jobs a mean is taken over: "" matches any preset / conversion; map ages in [min_age, max_age].
+struct FlightCell {
+    std::string preset, conversion;
+    int min_age = 0, max_age = INT_MAX;
+};
+inline FlightCell at_age(std::string preset, std::string conversion, int age) { return {std::move(preset), std::move(conversion), age, age}; }
+// Mean of `key` over the matching jobs with a finite value; NaN when none.
+double mean_of(const std::vector<Json>& outputs, const char* key, const FlightCell& cell);
+
+// The paper's "logistic beats linear in 10 of 12 scenarios": in how many of `presets` the mean
+// error of `better` is below that of `than` (presets lacking either are not counted).
+struct WinCount {
+    int wins = 0, scenarios = 0;
+};
+WinCount scenarios_where_more_accurate(const std::vector<Json>& outputs, const std::vector<std::string>& presets, const std::string& better,
+                                       const std::string& than);
+
+// The abstract's "~30 % precision loss on out-of-date maps": how much larger the mean error is on
+// maps of another year than on the map of the flight's own year (map age 0), in percent:
+// 100 * (mean over jobs with map age > 0 / mean over jobs with map age 0 - 1). `conversion` ""
+// pools every function. NaN when either side has no job.
+double out_of_date_loss_percent(const std::vector<Json>& outputs, const std::string& conversion);
+
+}  // namespace trn::experiments
