@@ -10,6 +10,7 @@
 
 #include "devices.hpp"
 #include "inputs.hpp"
+#include "old_cpu_ncc.hpp"
 #include "register.hpp"
 #include "timing.hpp"
 #include "trn/scoring_plan.hpp"
@@ -129,6 +130,26 @@ void ncc_peer(benchmark::State& state, Peer peer, FrameSize templ_size, int coun
                    std::to_string(scores[0]));
 }
 
+// The cpu backend before exact integer scoring (old_cpu_ncc.hpp), dense only: the "before" of
+// issue 14's cpu speed targets, measured in the same run as the backend.
+void ncc_old_cpu(benchmark::State& state, FrameSize templ_size, int count) {
+    static const old_cpu::PackedMap map = old_cpu::pack_map(bench_map().pixels);
+    const old_cpu::FloatPlan plan = old_cpu::make_float_plan(template_from_map(templ_size));
+    const std::vector<Pose> poses = poses_around_centre(count);
+    std::vector<float> scores(poses.size());
+    if (first_time("old:cpu_float/" + templ_size.text() + "/" + std::to_string(count))) old_cpu::score(map, plan, poses, scores);
+    IterationLog log(state);
+    for (auto _ : state) {
+        const auto t0 = Clock::now();
+        old_cpu::score(map, plan, poses, scores);
+        log.add(seconds_since(t0));
+    }
+    benchmark::DoNotOptimize(scores.data());
+    log.finish(0, count, "particles/s", 1, double(count) * double(templ_size.width) * templ_size.height);
+    state.SetLabel(std::string("float sums, inner loop ") + (old_cpu::avx2_available() ? "AVX2" : "portable") +
+                   ", the cpu backend before exact scoring, score[0]=" + std::to_string(scores[0]));
+}
+
 }  // namespace
 
 void register_ncc_benchmarks(const Sweep& sweep) {
@@ -147,13 +168,26 @@ void register_ncc_benchmarks(const Sweep& sweep) {
                                                  ncc_on_device, dev, ts, sparse, sweep.ncc_reference_count)
                         ->UseManualTime()->Unit(benchmark::kMillisecond);
             }
-            if (sparse) continue;  // the peers have no sparse mode
+            if (sparse) continue;  // the peers and the old cpu path have no sparse mode
+            for (int n : sweep.ncc_counts)
+                benchmark::RegisterBenchmark((prefix + std::to_string(n) + "/old:cpu_float").c_str(), ncc_old_cpu, ts, n)
+                    ->UseManualTime()->Unit(benchmark::kMillisecond);
             for (Peer peer : {Peer::ParticleMatch, Peer::WarpStats, Peer::WarpOnly})
                 benchmark::RegisterBenchmark((prefix + std::to_string(sweep.ncc_reference_count) + "/" + peer_name(peer)).c_str(), ncc_peer,
                                              peer, ts, sweep.ncc_reference_count)
                     ->UseManualTime()->Unit(benchmark::kMillisecond);
         }
     }
+    // The particle filter's case: many particles, a small template; every backend but cpu-ref,
+    // and the old cpu path beside them.
+    const FrameSize fs = sweep.ncc_filter_template;
+    const std::string prefix = "ncc/" + fs.text() + "/dense/N" + std::to_string(sweep.ncc_filter_count);
+    for (const DeviceEntry& dev : bench_devices())
+        if (dev.family != "cpu-ref")
+            benchmark::RegisterBenchmark((prefix + "/dev:" + dev.name).c_str(), ncc_on_device, dev, fs, false, sweep.ncc_filter_count)
+                ->UseManualTime()->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark((prefix + "/old:cpu_float").c_str(), ncc_old_cpu, fs, sweep.ncc_filter_count)
+        ->UseManualTime()->Unit(benchmark::kMillisecond);
 }
 
 }  // namespace trn::bench

@@ -21,6 +21,8 @@ struct Sweep {
     bool sobel_batch16 = false;                // 16 frames per iteration on opencl/vulkan devices
     std::vector<int> ncc_counts;               // particles per call
     std::vector<FrameSize> ncc_templates;
+    FrameSize ncc_filter_template{160, 120};   // the particle filter's case (issue 14): this template, dense,
+    int ncc_filter_count = 1000;               // this many particles, every backend and the old cpu path
     int ncc_reference_count = 100;             // cpu-ref and the per-particle peers run this many
                                                // (their per-particle rate does not depend on it)
     std::size_t cold_bytes = 0;                // rotating working set for "cold" cases

@@ -5,6 +5,7 @@
 #include "ncc_rows.hpp"
 #include "thread_pool.hpp"
 #include "trn/impl/particle_sums.hpp"
+#include "trn/limits.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -24,16 +25,21 @@ constexpr int kMaxThreads = 4096;
 
 class CpuMap : public MapStorage {
 public:
-    // Rows are packed (stride == width) with kPad spare bytes at the end, so the AVX2 path may read
-    // a 4-byte word starting at any pixel.
+    // The map as vertical pixel pairs (cpu::MapPixels: twice the map's bytes), so that one 32-bit
+    // read brings a sample's whole 2x2 cell; kPad spare bytes at the end for the last cell's read.
     static constexpr std::size_t kPad = 16;
     CpuMap(const Backend* owner, GrayView v)
-        : MapStorage(owner, v.width, v.height), stride(v.width), pixels(std::size_t(v.width) * v.height + kPad, 0) {
-        for (int y = 0; y < v.height; ++y) std::copy_n(v.row(y), v.width, pixels.data() + std::size_t(y) * v.width);
+        : MapStorage(owner, v.width, v.height), pair_stride(2 * std::ptrdiff_t(v.width)),
+          pairs(std::size_t(pair_stride) * std::size_t(v.height - 1) + kPad, 0) {
+        for (int y = 0; y + 1 < v.height; ++y) {
+            const std::uint8_t *top = v.row(y), *bottom = v.row(y + 1);
+            std::uint8_t* out = pairs.data() + std::size_t(y) * std::size_t(pair_stride);
+            for (int x = 0; x < v.width; ++x) out[2 * x] = top[x], out[2 * x + 1] = bottom[x];
+        }
     }
-    cpu::MapPixels view() const { return {pixels.data(), stride, width(), height()}; }
-    std::ptrdiff_t stride;
-    std::vector<std::uint8_t> pixels;
+    cpu::MapPixels view() const { return {pairs.data(), pair_stride, width(), height()}; }
+    std::ptrdiff_t pair_stride;
+    std::vector<std::uint8_t> pairs;
 };
 
 // True when every sample position of the template rectangle lies inside the map, so per-sample
@@ -81,6 +87,10 @@ public:
 protected:
     MapHandle do_upload_map(GrayView map, PhaseTimes* times) override {
         const auto t0 = Clock::now();
+        // upload_map checked one byte per pixel; the pair layout holds two.
+        limits::check_memory("upload_map: map " + std::to_string(map.width) + "x" + std::to_string(map.height) +
+                                 " as the cpu backend's pixel pairs",
+                             2.0 * double(map.width) * double(map.height));
         auto m = std::make_shared<CpuMap>(this, map);
         if (times) times->upload_ms = ms_since(t0);
         return m;
@@ -129,7 +139,7 @@ private:
         ParticleSums sums;
         const cpu::MapPixels pixels = map.view();
         const bool inside = patch_inside(map, A, plan);
-        const bool vector = inside && use_avx2_ && std::int64_t(map.stride) * map.height() < (std::int64_t(1) << 31);
+        const bool vector = inside && use_avx2_;
         if (inside) sums.n = static_cast<std::int64_t>(plan.sample_count()), sums.st = st_, sums.stt = stt_;
         auto add = [&](const cpu::RowInput& row) {
             const cpu::RowSums r = vector   ? cpu::sample_row_inside_avx2(pixels, row)

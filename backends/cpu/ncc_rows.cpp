@@ -24,9 +24,8 @@ RowSums sample_row(const MapPixels& m, const RowInput& row) {
         }
         const int x0 = std::min(int(px), x0max), y0 = std::min(int(py), y0max);  // px >= 0: int() == floor
         const float fx = px - float(x0), fy = py - float(y0);
-        const std::uint8_t* p = m.data + std::ptrdiff_t(y0) * m.stride + x0;
-        const std::int64_t j = valid * fixed::bilinear(p[0], p[1], p[m.stride], p[m.stride + 1], fixed::weight(fx),
-                                                       fixed::weight(fy));
+        const std::uint8_t* p = m.pairs + std::ptrdiff_t(y0) * m.pair_stride + 2 * std::ptrdiff_t(x0);  // m00 m01 m10 m11
+        const std::int64_t j = valid * fixed::bilinear(p[0], p[2], p[1], p[3], fixed::weight(fx), fixed::weight(fy));
         const std::int64_t t = row.t[k];
         r.sj += j;
         r.sjj += j * j;

@@ -14,9 +14,12 @@ struct RowSums {
     std::int64_t n = 0, sj = 0, sjj = 0, sjt = 0, st = 0, stt = 0;
 };
 
+// The map as vertical pixel pairs: byte 2x of pair row y is pixel (x, y) and byte 2x+1 is pixel
+// (x, y+1), for y = 0 .. height-2. The 2x2 cell at (x, y) is then the 4 bytes at pair row y,
+// offset 2x (m00, m01, m10, m11): one 32-bit load, or one gather lane, per sample.
 struct MapPixels {
-    const std::uint8_t* data;  // padded by >= 4 bytes past the last pixel (see CpuMap)
-    std::ptrdiff_t stride;
+    const std::uint8_t* pairs;     // (height - 1) rows of 2 * width bytes, >= 4 spare bytes after them
+    std::ptrdiff_t pair_stride;    // bytes from one pair row to the next (2 * width)
     int width, height;
 };
 
@@ -40,8 +43,9 @@ struct RowInput {
 RowSums sample_row_checked(const MapPixels& m, const RowInput& row);
 RowSums sample_row_inside(const MapPixels& m, const RowInput& row);
 
-// AVX2 version of sample_row_inside (the same integers; interpolation as int16 multiply-adds).
-// Only call when avx2_available() and the map has fewer than 2^31 pixels.
+// AVX2 version of sample_row_inside (the same integers; interpolation and products as int16
+// multiply-adds). Only call when avx2_available(); every map the API accepts (< 2^31 pixels) fits
+// its 32-bit gather indices.
 RowSums sample_row_inside_avx2(const MapPixels& m, const RowInput& row);
 bool avx2_available();
 

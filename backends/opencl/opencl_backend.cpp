@@ -11,6 +11,7 @@
 #include <optional>
 #include <vector>
 
+#include "../common/ncc_work_shape.hpp"
 #include "../common/sobel_work_shape.hpp"
 #include "../common/pow2.hpp"
 #include "device_buffer.hpp"
@@ -21,11 +22,6 @@
 namespace trn::opencl {
 namespace {
 
-// Work items per particle (each scores 8 samples at a time, see ncc_score.cl): wide on GPUs, where
-// a work-group maps to warps; one on CPU devices, where PoCL runs a work-group as a loop on one
-// core and a single work item walks the template in memory order with no reduction to pay for.
-constexpr std::size_t kGpuWorkGroup = 256;
-constexpr std::size_t kCpuWorkGroup = 1;
 constexpr std::size_t kSobelPad = 16;  // TRN_SOBEL_PAD in sobel3x3.cl: bytes left of each source row
 constexpr int kSumsPerParticle = 6;    // n, sj, sjj, sjt, st, stt as longs: see ncc_score.cl
 constexpr int kAffinePerParticle = 8;  // a, b, c, d, tx, ty, (pad, pad)
@@ -107,14 +103,22 @@ WorkGroupLimits sobel_work_group_limits(cl_kernel k, cl_device_id device) {
     return limits;
 }
 
+// What the device says that shapes the NCC work-group (choose_opencl_ncc_shape); `lanes` is a
+// built kernel's preferred work-group multiple.
+NccDeviceLimits ncc_device_limits(cl_device_id device, std::size_t lanes) {
+    NccDeviceLimits limits;
+    limits.max_group_size = device_value<std::size_t>(device, CL_DEVICE_MAX_WORK_GROUP_SIZE);
+    limits.lanes = lanes;
+    limits.local_memory_bytes = device_value<cl_ulong>(device, CL_DEVICE_LOCAL_MEM_SIZE);
+    limits.local_memory_is_host_memory = device_value<cl_device_local_mem_type>(device, CL_DEVICE_LOCAL_MEM_TYPE) == CL_GLOBAL;
+    return limits;
+}
+
 class OpenClBackend final : public Backend {
 public:
     OpenClBackend(const DeviceRef& device, int index, const BackendOptions::OpenCl& options)
         : device_(device), info_(describe_device(device, index)) {
         max_alloc_ = device_value<cl_ulong>(device.device, CL_DEVICE_MAX_MEM_ALLOC_SIZE);
-        const auto max_wg = device_value<std::size_t>(device.device, CL_DEVICE_MAX_WORK_GROUP_SIZE);
-        wg_size_ = std::min(work_group_override(options).value_or(info_.type == "gpu" ? kGpuWorkGroup : kCpuWorkGroup),
-                            floor_pow2(max_wg));
 
         cl_int err = CL_SUCCESS;
         context_.reset(clCreateContext(nullptr, 1, &device_.device, nullptr, nullptr, &err));
@@ -122,26 +126,33 @@ public:
         queue_.reset(clCreateCommandQueue(context_.get(), device_.device, CL_QUEUE_PROFILING_ENABLE, &err));
         check(err, "clCreateCommandQueue(" + info_.device + ", profiling)");
 
+        // Sobel first: its kernel tells the device's lanes, which shape the NCC program's work-group.
         const ProgramCacheSettings cache = program_cache_settings(options);
         const EmbeddedKernel ncc = embedded_ncc_score(), sobel = embedded_sobel3x3();
-        BuiltProgram ncc_program = build_program(context_.get(), device_, ncc.file, ncc.source, ncc.sha256,
-                                                 "-DTRN_WG_SIZE=" + std::to_string(wg_size_), cache);
         BuiltProgram sobel_program = build_program(context_.get(), device_, sobel.file, sobel.source, sobel.sha256,
                                                    "", cache);
+        sobel_program_ = std::move(sobel_program.program);
+        sobel_ = make_kernel(sobel_program_.get(), "sobel3x3");
+        sobel_columns_ = make_kernel(sobel_program_.get(), "sobel3x3_columns");
+        sobel_limits_ = sobel_work_group_limits(sobel_.get(), device_.device);
+
+        const NccDeviceLimits ncc_limits = ncc_device_limits(device_.device, sobel_limits_.lanes);
+        wg_size_ = std::min(work_group_override(options).value_or(choose_opencl_ncc_shape(ncc_limits).group_size),
+                            floor_pow2(ncc_limits.max_group_size));
+        BuiltProgram ncc_program = build_program(context_.get(), device_, ncc.file, ncc.source, ncc.sha256,
+                                                 "-DTRN_WG_SIZE=" + std::to_string(wg_size_), cache);
         const bool warm = ncc_program.from_cache && sobel_program.from_cache;
         const double build_ms = ncc_program.build_ms + sobel_program.build_ms;
         record_build_time(cache, device_, warm, build_ms);
         ncc_program_ = std::move(ncc_program.program);
-        sobel_program_ = std::move(sobel_program.program);
         dense_ = make_kernel(ncc_program_.get(), "ncc_score_dense");
         sparse_ = make_kernel(ncc_program_.get(), "ncc_score_sparse");
-        sobel_ = make_kernel(sobel_program_.get(), "sobel3x3");
-        sobel_columns_ = make_kernel(sobel_program_.get(), "sobel3x3_columns");
         require_work_group(dense_.get(), "ncc_score_dense", wg_size_);
         require_work_group(sparse_.get(), "ncc_score_sparse", wg_size_);
-        sobel_limits_ = sobel_work_group_limits(sobel_.get(), device_.device);
 
-        info_.details += "; NCC work-group " + std::to_string(wg_size_) + ", Sobel work-groups from " +
+        info_.details += "; NCC work-group " + std::to_string(wg_size_) + ", from " + std::to_string(ncc_limits.lanes) +
+                         " lanes and " + std::to_string(ncc_limits.local_memory_bytes >> 10) + " KiB local memory " +
+                         (ncc_limits.local_memory_is_host_memory ? "in host memory" : "on the device") + "; Sobel work-groups from " +
                          std::to_string(sobel_limits_.max_group_size) + " items max, " + std::to_string(sobel_limits_.lanes) +
                          " lanes, " + std::to_string(sobel_limits_.compute_units) + " compute units; programs " + (warm ? "loaded from the cache" : "built from source") +
                          " in " + std::to_string(static_cast<long>(build_ms + 0.5)) + " ms";

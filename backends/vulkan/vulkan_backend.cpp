@@ -8,6 +8,7 @@
 #include <string>
 
 #include "ncc_score_shared.h"
+#include "../common/ncc_work_shape.hpp"
 #include "../common/pow2.hpp"
 #include "ncc_score_subgroup.h"
 #include "sobel3x3.h"
@@ -17,32 +18,41 @@ namespace trn {
 namespace vk {
 namespace {
 
-// Work-group size for scoring: options.work_group when set (power of two, for tuning), else 8 on
-// CPU devices (lavapipe runs a whole group on one thread; with 8 particles per group, 8 measured
-// fastest of 8..32 there, 640x480 templates) and 256 on GPUs; always within the device limits.
-std::uint32_t choose_score_group_size(const Context& ctx, const BackendOptions::Vulkan& options) {
-    std::uint32_t want = ctx.physical().properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? 8 : 256;
+// What the device says that shapes the scoring work-group (choose_vulkan_ncc_shape).
+NccDeviceLimits ncc_device_limits(const Context& ctx) {
+    const auto& lim = ctx.limits();
+    NccDeviceLimits limits;
+    limits.max_group_size = std::min(lim.maxComputeWorkGroupInvocations, lim.maxComputeWorkGroupSize[0]);
+    limits.lanes = std::max<std::uint32_t>(ctx.physical().subgroup.subgroupSize, 1);
+    limits.local_memory_bytes = lim.maxComputeSharedMemorySize;
+    // No memory of its own: every memory type is host memory as seen by the host's caches.
+    const VkMemoryPropertyFlags host = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT | VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
+                                       VK_MEMORY_PROPERTY_HOST_COHERENT_BIT | VK_MEMORY_PROPERTY_HOST_CACHED_BIT;
+    const VkPhysicalDeviceMemoryProperties& m = ctx.physical().memory;
+    limits.local_memory_is_host_memory = m.memoryTypeCount > 0;
+    for (std::uint32_t i = 0; i < m.memoryTypeCount; ++i)
+        if ((m.memoryTypes[i].propertyFlags & host) != host) limits.local_memory_is_host_memory = false;
+    return limits;
+}
+
+// The device's shape, with options.work_group (a power of two <= 1024) and
+// options.particles_per_group (1..16) replacing its parts when set (for tuning); the group always
+// within the device limits.
+NccWorkShape choose_score_shape(const Context& ctx, const BackendOptions::Vulkan& options) {
+    const NccDeviceLimits limits = ncc_device_limits(ctx);
+    NccWorkShape shape = choose_vulkan_ncc_shape(limits);
     if (const std::uint32_t v = options.work_group; v != 0) {
         if (v > 1024 || (v & (v - 1)) != 0)
             throw Error("vulkan: BackendOptions.vulkan.work_group = " + std::to_string(v) + " is not a power of two in [1, 1024]");
-        want = v;
+        shape.group_size = v;
     }
-    const auto& lim = ctx.limits();
-    return floor_pow2(std::min({want, lim.maxComputeWorkGroupInvocations, lim.maxComputeWorkGroupSize[0]}));
-}
-
-// Particles per scoring work-group: options.particles_per_group when set (1..16, for tuning), else
-// 8 on CPU devices (each template read then serves several particles; on lavapipe, 640x480 dense,
-// 4, 8 and 16 measured within 10% of each other and 1 took 1.8x as long) and 1 on GPUs (where one
-// particle per group already gives enough groups).
-std::uint32_t choose_particles_per_group(const Context& ctx, const BackendOptions::Vulkan& options) {
-    std::uint32_t want = ctx.physical().properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? 8 : 1;
     if (const std::uint32_t v = options.particles_per_group; v != 0) {
         if (v > 16)
             throw Error("vulkan: BackendOptions.vulkan.particles_per_group = " + std::to_string(v) + " is not in [1, 16]");
-        want = v;
+        shape.particles_per_group = v;
     }
-    return want;
+    shape.group_size = floor_pow2(std::min(shape.group_size, limits.max_group_size));
+    return shape;
 }
 
 }  // namespace
@@ -74,8 +84,9 @@ VulkanBackend::VulkanBackend(int index, const BackendOptions::Vulkan& options)
     constexpr std::size_t kMaxAllocation = std::size_t(1) << 30;
     map_placement_.band_bytes = std::min<std::size_t>(ctx.limits().maxStorageBufferRange, kMaxAllocation) & ~std::size_t(3);
     map_placement_.band_quads = std::min<std::size_t>(ctx.limits().maxTexelBufferElements, kMaxAllocation / 4);
-    score_group_size_ = choose_score_group_size(ctx, options);
-    particles_per_group_ = choose_particles_per_group(ctx, options);
+    const NccWorkShape score_shape = choose_score_shape(ctx, options);
+    score_group_size_ = static_cast<std::uint32_t>(score_shape.group_size);
+    particles_per_group_ = static_cast<std::uint32_t>(score_shape.particles_per_group);
     sobel_limits_ = sobel_work_group_limits(ctx);
     sobel_shape_ = choose_sobel_work_shape(sobel_limits_, kSobelStripPixels, 1);  // the group; rows per item vary per call
     info_.details += ", scoring work-group " + std::to_string(score_group_size_) + " for up to " +

@@ -24,13 +24,13 @@ struct BackendOptions {
     } cpu;
 
     struct OpenCl {
-        std::uint32_t work_group = 0;     // NCC work-group size, a power of two; 0: 256 on GPUs, 1 on CPUs
+        std::uint32_t work_group = 0;     // NCC work-group size, a power of two; 0: from device queries (ncc_work_shape.hpp)
         std::string program_cache_dir;    // folder for compiled program binaries; empty: no disk cache
     } opencl;
 
     struct Vulkan {
-        std::uint32_t work_group = 0;           // scoring work-group, power of two in [1, 1024]; 0: 256 on GPUs, 8 on CPUs
-        std::uint32_t particles_per_group = 0;  // 1..16; 0: 1 on GPUs, 8 on CPUs
+        std::uint32_t work_group = 0;           // scoring work-group, power of two in [1, 1024]; 0: from device queries
+        std::uint32_t particles_per_group = 0;  // 1..16; 0: from device queries (ncc_work_shape.hpp)
         bool quad_maps = true;                  // false: maps stay one byte per pixel (tests that path)
         bool subgroups = true;                  // false: the shared-memory reduction even with subgroup arithmetic
         bool force_staging = false;             // true: staging buffers even with unified memory

@@ -1,0 +1,46 @@
+#pragma once
+// How the device NCC kernels (kernels/opencl/ncc_score.cl, kernels/vulkan/ncc_score.comp) are
+// shaped: work items per particle and particles per work-group, from what the device reports
+// about itself (never from its type). Integer sums make any shape give cpu-ref's bits, so the
+// rule only decides speed.
+#include <cstddef>
+
+namespace trn {
+
+// What a device says that decides the NCC work-group shape.
+struct NccDeviceLimits {
+    std::size_t max_group_size = 1;      // OpenCL CL_DEVICE_MAX_WORK_GROUP_SIZE; Vulkan min(maxComputeWorkGroupInvocations, maxComputeWorkGroupSize[0])
+    std::size_t lanes = 1;               // OpenCL CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE; Vulkan subgroupSize
+    std::size_t local_memory_bytes = 0;  // OpenCL CL_DEVICE_LOCAL_MEM_SIZE; Vulkan maxComputeSharedMemorySize
+    // Local/shared memory is ordinary host memory, i.e. the implementation runs a work-group as a
+    // loop on one CPU core: OpenCL CL_DEVICE_LOCAL_MEM_TYPE == CL_GLOBAL; Vulkan: every memory
+    // type is device-local, host-visible, coherent and cached (the device has no memory of its own).
+    bool local_memory_is_host_memory = false;
+};
+
+struct NccWorkShape {
+    std::size_t group_size = 1;           // work items per group (a power of two)
+    std::size_t particles_per_group = 1;  // particles one group scores (Vulkan; OpenCL always 1)
+};
+
+inline constexpr std::size_t kNccMaxGroup = 256;          // cap on work items per group
+inline constexpr std::size_t kNccSubgroupsPerGroup = 8;   // subgroups per group on devices with their own local memory
+inline constexpr std::size_t kOpenClReductionBytes = 48;  // ncc_score.cl: 6 longs of local memory per work item
+inline constexpr std::size_t kVulkanHostParticles = 8;    // particles per group where groups run on CPU cores
+
+// OpenCL (one particle per group). Local memory in host memory: 1 work item (the item's own
+// 8-wide vectors fill the SIMD unit and the template is walked in memory order with no reduction;
+// wider groups only add a loop and a reduction through memory). Otherwise kNccSubgroupsPerGroup x
+// lanes items (enough subgroups to hide the map gathers' latency), at most kNccMaxGroup, the
+// device's maximum and what its local memory holds for the reduction. A power of two, >= 1.
+NccWorkShape choose_opencl_ncc_shape(const NccDeviceLimits& limits);
+
+// Vulkan. Host memory: one subgroup per group (lavapipe runs a group on one thread, the subgroup
+// being its SIMD width) scoring kVulkanHostParticles particles, so that each template read serves
+// several particles. Otherwise kNccSubgroupsPerGroup x lanes items, at most kNccMaxGroup and the
+// device's maximum, one particle per group (a batch of ~1000 particles then still gives enough
+// groups to fill a GPU). The kernel's shared memory is a fixed 16 KiB, the spec's minimum, so it
+// does not limit the shape. A power of two, >= 1.
+NccWorkShape choose_vulkan_ncc_shape(const NccDeviceLimits& limits);
+
+}  // namespace trn

@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# scripts/bench-report on fixed bench.json files (tests/bench/data): each speed target of issue 14
+# is reported as a ratio of two rates from the same run with met / not met, and as "not measured"
+# when the run lacks one side (here: no old cpu path, no filter case).
+# usage: report_issue14_targets.sh REPO_ROOT WORK_DIR
+set -uo pipefail
+repo=$1 work=$2
+rm -rf "$work" && mkdir -p "$work"
+fail=0
+report() {  # fixture -> $work/<name>/report.md
+  local out="$work/${1%.json}"
+  if ! "$repo/scripts/bench-report" --from-json "$repo/tests/bench/data/$1" --out "$out" > "$out.log" 2>&1; then
+    echo "FAIL $1: bench-report exited non-zero:"; cat "$out.log"; fail=1
+  fi
+}
+expect() {  # fixture, text the report must hold on one line
+  if grep -qF -- "$2" "$work/${1%.json}/report.md"; then echo "ok   $1: $2"
+  else echo "FAIL $1: no line with: $2"; fail=1; fi
+}
+report ncc_issue14_targets.json
+expect ncc_issue14_targets.json "NCC cpu 640x480 dense >= 1.5x the old cpu backend: **met** — 12.0 vs 6.00 particles/s = 2.00x"
+expect ncc_issue14_targets.json "NCC cpu 640x480 dense >= 30x particle_match: **not met** — 12.0 vs 0.500 particles/s = 24.00x"
+expect ncc_issue14_targets.json "the filter's case, >= 2x the old cpu backend: **not met** — 400 vs 250 particles/s = 1.60x"
+expect ncc_issue14_targets.json "NCC on PoCL (opencl:0) >= 0.6x cpu: **met** — 9.00 vs 12.0 particles/s = 0.75x"
+expect ncc_issue14_targets.json "NCC on lavapipe (vulkan:0) >= 0.5x cpu: **not met** — 5.00 vs 12.0 particles/s = 0.42x"
+expect ncc_issue14_targets.json "the filter's case (160x120 dense N1000): 0.25x cpu"
+report ncc_without_old_path.json
+expect ncc_without_old_path.json "NCC cpu 640x480 dense >= 1.5x the old cpu backend: not measured in this run"
+expect ncc_without_old_path.json "NCC cpu 160x120 dense (the filter's case) >= 2x the old cpu backend: not measured in this run"
+exit $fail
