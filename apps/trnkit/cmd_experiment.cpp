@@ -33,10 +33,15 @@ void add_experiment_command(CLI::App& app) {
             "i/n"));
     cmd->add_option("--job", a->job, "Run only this job (ids from --list-jobs)");
     auto list_mode = std::make_shared<std::string>();
-    cmd->add_flag("--list-jobs{commands}", *list_mode,
+    cmd->add_flag("--list-jobs", *list_mode,
                   "Print one command per job, then the merge command; --list-jobs=ids: only the job ids, one a line (what "
                   "scripts/experiment-parallel and experiment-slurm pass to --job)")
-        ->check(CLI::IsMember({"commands", "ids"}));
+        ->option_text("[=ids]")
+        ->check(CLI::Validator(
+            [](std::string& value) -> std::string {  // a bare flag reads "true"
+                return value == "true" || value == "ids" ? std::string() : "takes no value or =ids, not '" + value + "'";
+            },
+            "[=ids]"));
     cmd->add_flag("--merge", a->merge_only, "Only build the tables from finished job outputs");
     cmd->add_flag("--prepare", a->prepare_only,
                   "Only create the output folder and check the finished jobs against these options, before a dispatcher "
