@@ -2,7 +2,7 @@
 # scripts/experiment-slurm against a throwaway single-node Slurm started here: its own munged (own
 # key and socket), slurmctld and slurmd on free ports with their own slurm.conf and state in a
 # temporary folder (SlurmUser = this user, proctrack/linuxproc, no cgroup). The script submits the
-# study's job array (2 jobs per task here) and the merge as a job depending on it; the test waits
+# study's job array (MaxArraySize=3 here, so several jobs per task) and the merge as a job depending on it; the test waits
 # (bounded) for the merge and checks every job ran and the tables were built. The daemons are
 # stopped and the folder removed however the test ends. Where Slurm cannot start here (packages
 # missing, not root, no free port, a daemon that does not come up) the test says why and is SKIPPED.
@@ -90,7 +90,7 @@ ReturnToService=2
 SlurmdTimeout=30
 InactiveLimit=0
 KillWait=5
-MaxArraySize=1001
+MaxArraySize=3
 NodeName=$node NodeAddr=127.0.0.1 CPUs=$cpus State=UNKNOWN
 PartitionName=trntest Nodes=$node Default=YES MaxTime=INFINITE State=UP
 CONF
@@ -110,7 +110,7 @@ echo "slurm: munged, slurmctld and slurmd up after $SECONDS s"
 
 out=$work/out/$study
 status=0
-timeout 90 "$scripts/experiment-slurm" --jobs-per-task 2 --wait --trnkit "$trnkit" "$study" --quick --no-plots --out "$out" \
+timeout 90 "$scripts/experiment-slurm" --wait --trnkit "$trnkit" "$study" --quick --no-plots --out "$out" \
   >"$work/submit.log" 2>&1 || status=$?
 if ((status != 0)); then
   cat "$work/submit.log" >&2
@@ -120,7 +120,10 @@ if ((status != 0)); then
   fail "experiment-slurm failed (status $status)"
 fi
 n=$("$trnkit" experiment "$study" --quick --list-jobs=ids | wc -l)
-tasks=$(((n + 1) / 2))
+# MaxArraySize=3 allows indices 1-2 only: the script must put ceil(n/2) jobs into each task.
+per_task=$(((n + 1) / 2))
+tasks=$(((n + per_task - 1) / per_task))
+grep -q "MaxArraySize is 3: $per_task jobs per task" "$work/submit.log" || { cat "$work/submit.log" >&2; fail "jobs per task not raised to fit MaxArraySize"; }
 [[ $(find "$out/jobs" -maxdepth 1 -name '*.json' | wc -l) -eq $n ]] || fail "expected $n job outputs"
 [[ $(find "$out/dispatch" -name 'slurm-*_*.log' | wc -l) -eq $tasks ]] || fail "expected $tasks array task logs"
 grep -q "$n jobs in $tasks array tasks" "$work/submit.log" || fail "the submission did not report $tasks tasks"
@@ -131,7 +134,7 @@ echo "slurm: $n jobs in $tasks array tasks, then the dependent merge built the t
 # A study whose jobs fail on the nodes (a backend this trnkit lacks is found only when a job creates
 # it): the merge never runs (Slurm cancels it) and the script says so with a non-zero status.
 status=0
-timeout 60 "$scripts/experiment-slurm" --jobs-per-task 3 --wait --trnkit "$trnkit" "$study" --quick --no-plots \
+timeout 60 "$scripts/experiment-slurm" --jobs-per-task 4 --wait --trnkit "$trnkit" "$study" --quick --no-plots \
   --backend no-such-backend --out "$work/out/failing" >"$work/failing.log" 2>&1 || status=$?
 ((status != 124)) || fail "the failing submission did not end within 60 s"
 ((status != 0)) || fail "failed tasks did not fail the submission"
