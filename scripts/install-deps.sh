@@ -19,6 +19,9 @@ packages=(
   clang libclang-rt-14-dev gnuplot-nox python3
   # the Python module (pybind11 + NumPy) and its pytest tests
   python3-dev python3-numpy python3-pybind11 pybind11-dev python3-pytest
+  # running the studies on a cluster engine (scripts/experiment-*; tests/cluster starts a throwaway
+  # single-node Slurm) and checking the scripts
+  parallel slurmctld slurmd slurm-client munge shellcheck
 )
 
 missing=()
@@ -35,6 +38,17 @@ if [[ $(id -u) -ne 0 ]]; then
   SUDO=sudo
 fi
 export DEBIAN_FRONTEND=noninteractive
+# munge, slurmctld and slurmd start their daemons from their postinst (invoke-rc.d): in a container
+# that fails the install (slurmctld has no slurm.conf) or leaves stray daemons behind. A policy-rc.d
+# that refuses every start (exit 101, as Debian's docker images ship) keeps them stopped while we
+# install; an existing policy is left as it is. tests/cluster starts its own daemons when it needs them.
+policy=/usr/sbin/policy-rc.d
+if [[ ! -e $policy ]]; then
+  printf '#!/bin/sh\n# installed by trnkit scripts/install-deps.sh for the duration of one install\nexit 101\n' |
+    $SUDO tee "$policy" >/dev/null
+  $SUDO chmod 755 "$policy"
+  trap '$SUDO rm -f "$policy"' EXIT
+fi
 $SUDO apt-get update -qq
 $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 echo "install-deps: done"

@@ -32,18 +32,32 @@ void add_experiment_command(CLI::App& app) {
             },
             "i/n"));
     cmd->add_option("--job", a->job, "Run only this job (ids from --list-jobs)");
-    cmd->add_flag("--list-jobs", a->list_jobs, "Print one command per job (for GNU parallel / Slurm), then the merge command");
+    auto list_mode = std::make_shared<std::string>();
+    cmd->add_flag("--list-jobs", *list_mode,
+                  "Print one command per job, then the merge command; --list-jobs=ids: only the job ids, one a line (what "
+                  "scripts/experiment-parallel and experiment-slurm pass to --job)")
+        ->option_text("[=ids]")
+        ->check(CLI::Validator(
+            [](std::string& value) -> std::string {  // a bare flag reads "true"
+                return value == "true" || value == "ids" ? std::string() : "takes no value or =ids, not '" + value + "'";
+            },
+            "[=ids]"));
     cmd->add_flag("--merge", a->merge_only, "Only build the tables from finished job outputs");
+    cmd->add_flag("--prepare", a->prepare_only,
+                  "Only create the output folder and check the finished jobs against these options, before a dispatcher "
+                  "starts many --job runs at once (prints how many are finished)");
     cmd->add_flag("--no-merge", a->no_merge, "Run jobs only; merge later");
     cmd->add_flag("--partial", a->partial, "Merge the finished jobs even when some are missing (a documented subset)");
     cmd->add_flag("--no-plots", a->no_plots, "Skip gnuplot");
     cmd->add_flag("--force", a->force, "Write into a non-empty folder that is not an earlier output of this study");
-    cmd->callback([a] {
+    cmd->callback([a, list_mode] {
+        a->list_jobs = !list_mode->empty();
+        a->list_ids_only = *list_mode == "ids";
         a->progress = true;
         a->backend_options = backend_options_from_environment();
         if (const char* dir = std::getenv("TRN_SHARED_DATA")) a->shared_data = dir;  // the real-map jobs
         const std::size_t missing = experiments::run_experiment(*a);
-        if (missing && !a->list_jobs && !a->no_merge && !a->partial) throw trn::Error("experiment " + a->study + ": " + std::to_string(missing) + " job(s) not finished");
+        if (missing && !a->list_jobs && !a->prepare_only && !a->no_merge && !a->partial) throw trn::Error("experiment " + a->study + ": " + std::to_string(missing) + " job(s) not finished");
     });
 }
 

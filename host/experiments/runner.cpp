@@ -69,9 +69,19 @@ void progress_bar(std::size_t done, std::size_t total, const std::string& what) 
     if (done == total) std::fputc('\n', stderr);
 }
 
+// One word for a POSIX shell, whatever it holds: as it is when plain, else '...' with each ' as '\''.
+std::string shell_word(const std::string& text) {
+    const bool plain = !text.empty() && text.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_./:=+,@%-") ==
+                                            std::string::npos;
+    if (plain) return text;
+    std::string quoted = "'";
+    for (const char c : text) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return quoted + "'";
+}
+
 std::string command_prefix(const ExperimentOptions& o, const std::string& out) {
-    return "trnkit experiment " + o.study + (o.quick ? " --quick" : "") + " --seed " + std::to_string(o.seed) + " --backend " + o.backend +
-           " --out '" + out + "'";
+    return "trnkit experiment " + o.study + (o.quick ? " --quick" : "") + " --seed " + std::to_string(o.seed) + " --backend " +
+           shell_word(o.backend) + " --out " + shell_word(out);
 }
 
 }  // namespace
@@ -89,8 +99,12 @@ std::size_t run_experiment(const ExperimentOptions& o) {
         if (!ids.insert(j.at("id").get<std::string>()).second) throw Error("experiment: duplicate job id " + j.at("id").dump());
 
     const std::string out = o.out.empty() ? "experiments/" + o.study + (o.quick ? "-quick" : "") : o.out;
+    if (o.list_jobs && o.list_ids_only) {  // for scripts: each line is one --job argument, never shell text
+        for (const Json& j : jobs) std::cout << j.at("id").get<std::string>() << "\n";
+        return jobs.size();
+    }
     if (o.list_jobs) {
-        for (const Json& j : jobs) std::cout << command_prefix(o, out) << " --job " << j.at("id").get<std::string>() << " --no-merge\n";
+        for (const Json& j : jobs) std::cout << command_prefix(o, out) << " --job " << shell_word(j.at("id").get<std::string>()) << " --no-merge\n";
         std::cout << command_prefix(o, out) << " --merge\n";
         return jobs.size();
     }
@@ -115,6 +129,12 @@ std::size_t run_experiment(const ExperimentOptions& o) {
         return true;
     };
 
+    if (o.prepare_only) {  // folder ready, every finished job checked against this configuration
+        std::size_t missing = 0;
+        for (const Json& j : jobs) missing += finished(j) ? 0 : 1;
+        std::cerr << "experiment " << o.study << ": " << jobs.size() - missing << " of " << jobs.size() << " jobs finished in " << out << "\n";
+        return missing;
+    }
     if (!o.merge_only) {
         std::vector<const Json*> todo;
         for (std::size_t i = shard.index; i < jobs.size(); i += shard.count)

@@ -36,6 +36,16 @@ std::string without_trailing_separator(const std::string& folder) {
     return p.string();
 }
 
+// Whether a folder holds anything besides markers being written right now: several processes may
+// open one output folder at once (the jobs of `trnkit experiment` on GNU parallel or a Slurm array),
+// and one that sees another's marker before its rename must not take the folder for someone else's.
+bool has_entries(const std::string& folder, std::error_code& ec) {
+    const std::string marker_temporary = std::string(kOutputMarker) + ".tmp-";
+    for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec))
+        if (it->path().filename().string().rfind(marker_temporary, 0) != 0) return true;
+    return false;
+}
+
 void remove_tree(const std::string& path) {
     std::error_code ec;
     fs::remove_all(path, ec);
@@ -83,9 +93,10 @@ FolderState check_output_folder(const std::string& folder, const std::string& co
     if (fs::exists(st)) {
         if (!fs::is_directory(st)) throw Error(name + ": is a file, not a folder");
         if (::access(folder.c_str(), W_OK | X_OK) != 0) throw Error(name + ": not writable (" + std::strerror(errno) + ")");
-        fs::directory_iterator it(folder, ec);
-        if (ec) throw Error(name + ": cannot be listed (" + ec.message() + ")");
-        if (it == fs::directory_iterator()) return FolderState::Empty;
+        if (!has_entries(folder, ec)) {
+            if (ec) throw Error(name + ": cannot be listed (" + ec.message() + ")");
+            return FolderState::Empty;
+        }
         const std::string owner = marked_command(folder);
         if (owner == command) return FolderState::OwnOutput;
         if (!force)

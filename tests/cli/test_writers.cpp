@@ -304,4 +304,19 @@ TEST_F(Writers, OutputChecksNameTheOptionAndThePath) {
     EXPECT_EQ(trn::io::check_output_folder(path("d"), "localize", false), FolderState::OwnOutput);
 }
 
+// Several processes open one folder at once (experiment jobs on GNU parallel or Slurm): a marker
+// another process is still writing is not someone else's file; anything else still is.
+TEST_F(Writers, OutputFolderBeingMarkedByAnotherProcessIsEmpty) {
+    using trn::io::FolderState;
+    fs::create_directories(path("d"));
+    std::ofstream(path("d/.trnkit-output.tmp-4242-0")) << "trnkit experiment sampling\n";
+    EXPECT_EQ(trn::io::check_output_folder(path("d"), "experiment sampling", false), FolderState::Empty);
+    trn::io::open_output_folder(path("d"), "experiment sampling", false);
+    EXPECT_EQ(trn::io::check_output_folder(path("d"), "experiment sampling", false), FolderState::OwnOutput);
+    fs::create_directories(path("e"));
+    std::ofstream(path("e/.trnkit-output.tmp-4242-0")) << "x";
+    std::ofstream(path("e/notes.txt")) << "x";
+    EXPECT_THROW(trn::io::check_output_folder(path("e"), "experiment sampling", false), trn::Error);
+}
+
 }  // namespace

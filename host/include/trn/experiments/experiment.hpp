@@ -27,7 +27,9 @@ struct ExperimentOptions {
     std::uint64_t seed = 1;
     bool quick = false;          // reduced but meaningful version (CI)
     bool list_jobs = false;      // print one command per job and exit
+    bool list_ids_only = false;  // with list_jobs: print only the job ids, one a line (scripts/experiment-*)
     bool merge_only = false;     // only build tables from finished job outputs
+    bool prepare_only = false;   // only create/mark the output folder and check finished jobs (before a dispatch)
     bool no_merge = false;       // run jobs only (cluster shards); merge later
     bool partial = false;        // merge whatever jobs are finished (tables say so); for documented subsets
     bool no_plots = false;

@@ -1,0 +1,59 @@
+# shellcheck shell=bash
+# Shared by scripts/experiment-parallel and scripts/experiment-slurm (sourced, not run): reads
+# "NAME [trnkit experiment options]", checks them, and prepares the study's output folder.
+# Nothing from the options or the job list is ever evaluated as shell text: options travel as
+# array elements, job ids as single arguments to --job.
+
+die() { echo "${0##*/}: $*" >&2; exit 1; }
+
+# The trnkit executable: --trnkit PATH, else the build next to these scripts, else PATH.
+find_trnkit() {
+  local given=$1 here
+  here=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
+  if [[ -n $given ]]; then
+    [[ -x $given ]] || die "--trnkit $given: not an executable file"
+    trnkit=$(realpath -- "$given")
+  elif [[ -x $here/build/apps/trnkit/trnkit ]]; then
+    trnkit=$here/build/apps/trnkit/trnkit
+  else
+    trnkit=$(command -v trnkit) || die "no trnkit: build it (./run build) or pass --trnkit PATH"
+  fi
+}
+
+# Sets study, out (absolute) and experiment_options (the options with --out made absolute, so jobs
+# that run in another folder or on another host write to the same place) from "NAME [options]".
+parse_study_arguments() {
+  [[ $# -ge 1 && $1 != -* ]] || die "give the study name, then trnkit experiment options (--out DIR is required)"
+  study=$1
+  shift
+  out=""
+  experiment_options=()
+  while [[ $# -gt 0 ]]; do
+    case $1 in
+      --out) [[ $# -ge 2 ]] || die "--out needs a folder"; out=$2; shift 2; continue ;;
+      --out=*) out=${1#--out=}; shift; continue ;;
+      --job | --job=* | --list-jobs | --list-jobs=* | --merge | --no-merge | --shard | --shard=* | --prepare)
+        die "$1: set by this script (it runs every job by id, then the merge)" ;;
+    esac
+    experiment_options+=("$1")
+    shift
+  done
+  [[ -n $out ]] || die "--out DIR is required (one folder every job writes into; shared by all hosts)"
+  out=$(realpath -m -- "$out")
+  experiment_options+=(--out "$out")
+}
+
+# Sets job_ids (from trnkit itself), then creates and marks the output folder and checks finished
+# jobs against these options, so jobs started at once find it ready; the dispatcher's own files go
+# to $out/dispatch/ (created after the folder is marked, so trnkit owns it).
+list_and_prepare() {
+  local ids_text
+  ids_text=$("$trnkit" experiment "$study" "${experiment_options[@]}" --list-jobs=ids) ||
+    die "trnkit experiment $study refused the options (see above)"
+  [[ -n $ids_text ]] || die "$study: the job list is empty"
+  # shellcheck disable=SC2034  # job_ids and dispatch_dir are for the scripts that source this file
+  mapfile -t job_ids <<<"$ids_text"
+  "$trnkit" experiment "$study" "${experiment_options[@]}" --prepare || die "cannot prepare $out (see above)"
+  dispatch_dir=$out/dispatch
+  mkdir -p -- "$dispatch_dir"
+}
