@@ -1,5 +1,6 @@
 // Job bookkeeping shared by every study: job list, shards, resume, merge and provenance.
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -70,8 +71,14 @@ void progress_bar(std::size_t done, std::size_t total, const std::string& what) 
 }
 
 std::string command_prefix(const ExperimentOptions& o, const std::string& out) {
-    return "trnkit experiment " + o.study + (o.quick ? " --quick" : "") + " --seed " + std::to_string(o.seed) + " --backend " + o.backend +
-           " --out '" + out + "'";
+    std::string radius;
+    if (!std::isnan(o.start_radius_m)) {
+        char text[32];
+        std::snprintf(text, sizeof text, " --start-radius-m %.17g", o.start_radius_m);  // reads back as the same double
+        radius = text;
+    }
+    return "trnkit experiment " + o.study + (o.quick ? " --quick" : "") + " --seed " + std::to_string(o.seed) + radius + " --backend " +
+           o.backend + " --out '" + out + "'";
 }
 
 }  // namespace
@@ -83,6 +90,13 @@ std::size_t run_experiment(const ExperimentOptions& o) {
     config["quick"] = o.quick;
     config["seed"] = o.seed;
     config["backend"] = o.backend;
+    if (!std::isnan(o.start_radius_m)) {  // part of the configuration: jobs of another radius are refused, not mixed
+        if (!config.contains("start_radius_m"))
+            throw Error("experiment " + o.study + ": --start-radius-m: this study has no start radius (only conversion, robustness, odometry, odometry-wind)");
+        if (!(o.start_radius_m > 0 && o.start_radius_m <= 1e5))
+            throw Error("experiment: --start-radius-m " + std::to_string(o.start_radius_m) + " must be in (0, 100000]");
+        config["start_radius_m"] = o.start_radius_m;
+    }
     const std::vector<Json> jobs = study->jobs(config);
     std::set<std::string> ids;
     for (const Json& j : jobs)
