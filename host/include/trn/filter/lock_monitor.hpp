@@ -14,9 +14,10 @@
 //   - the contrast must reach `confident_contrast` plus `fix_far_contrast` per drift bound of
 //     distance from dead reckoning. Why: a place far from dead reckoning is a priori less likely,
 //     and the farther the filter may look, the more places compete and the higher the best of the
-//     wrong ones scores (look-elsewhere). Wrong places reached 5.1-5.7 while the cloud settled
-//     from a 300 m prior (UL-200-wind, FC-300-wind, FL-200 seed 1), true locks score 10-12 on
-//     average; a fix at the drift bound needs twice the contrast of one at dead reckoning;
+//     wrong ones scores (look-elsewhere). Wrong places ~250 m from the start of a 300 m prior
+//     reached 5.1-7.9 (FL-200, UL-200-wind and FC-300-wind seed 1), true locks average 10-12
+//     (docs/RESULTS.md); so a fix at the drift bound needs twice the contrast of one at dead
+//     reckoning (the wrong places above would need ~9.6);
 //   - and that for `fix_steps` consecutive steps on one track (each estimate within `converged_m`
 //     of the previous one moved by the odometry): one lucky frame is not a place.
 // A candidate still being confirmed is not declared lost (its evidence is strong, not weak).
