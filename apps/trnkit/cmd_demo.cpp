@@ -28,6 +28,7 @@ namespace {
 struct DemoArgs {
     std::string scenario = "FR-200-wind", backend = "fastest", out;  // crab, climbs, barometer: scenario.hpp
     double distance_km = 2.0, rate_hz = 5, sparse = 1;
+    double init_radius_m = filter::FilterConfig{}.init_radius_m;  // the dissertation's 300 m
     int template_width = 160;
     int map_year = 2008, flight_year = 2010;
     std::uint64_t seed = 1;
@@ -93,6 +94,7 @@ void demo(const DemoArgs& a) {
     filter::FilterConfig cfg;  // the dissertation's choices: KLD sampling, logistic:0.2
     cfg.metres_per_pixel = map.metres_per_pixel;
     cfg.seed = a.seed;
+    cfg.init_radius_m = a.init_radius_m;
     apply_filter_model_options(a.model, cfg);
     filter::ParticleFilter pf(scorer, cfg);
     const filter::LocalizationResult result = filter::run_localization(source, pf, progress_bar);
@@ -104,7 +106,8 @@ void demo(const DemoArgs& a) {
     report.command = "demo", report.out = out, report.force = force, report.plots = !a.no_plots, report.plot_title = preset.name;
     report.sparse = a.sparse, report.seed = a.seed, report.filter_rate_hz = preset.fps / stride, report.template_width = a.template_width;
     report.strings = {{"scenario", preset.name}};
-    report.numbers = {{"map_year", static_cast<double>(a.map_year)}, {"flight_year", static_cast<double>(a.flight_year)}};
+    report.numbers = {{"map_year", static_cast<double>(a.map_year)}, {"flight_year", static_cast<double>(a.flight_year)},
+                      {"init_radius_m", a.init_radius_m}};
     report_localization(result, *backend, cfg, map.image.view(), map.metres_per_pixel, report, std::cout);
     std::printf("total %.1f s (maps %.1f s)\n", seconds_since(t0), maps_s);
 }
@@ -124,6 +127,11 @@ void add_demo_command(CLI::App& app) {
     cmd->add_option("--sparse", a->sparse, "Share of template pixels scored (1 = dense)")->capture_default_str()->check(real_in(1e-4, 1.0));
     cmd->add_option("--map-year", a->map_year, "Year of the localization map")->capture_default_str()->transform(whole_in(kMinYear, kMaxYear));
     cmd->add_option("--flight-year", a->flight_year, "Year the flight sees")->capture_default_str()->transform(whole_in(kMinYear, kMaxYear));
+    cmd->add_option("--init-radius-m", a->init_radius_m,
+                    "Particles start uniform within this radius (m) of the true start (300 m: the dissertation's, no fix; "
+                    "50 m: a handover after GNSS loss, localize's default)")
+        ->capture_default_str()
+        ->check(real_in(0, 1e5, Open::low));
     cmd->add_option("--seed", a->seed, "Seed of map, flight and filter")->capture_default_str()->transform(any_seed());
     cmd->add_option("--out", a->out, "Output folder (default: <temp>/trnkit-demo)");
     cmd->add_flag("--no-plots", a->no_plots, "Skip the gnuplot step");

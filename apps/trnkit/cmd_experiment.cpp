@@ -19,6 +19,10 @@ void add_experiment_command(CLI::App& app) {
     cmd->add_option("--out", a->out, "Output folder (default: experiments/NAME[-quick])");
     cmd->add_option("--backend", a->backend, "Scoring backend (cpu, cpu-ref, opencl:0, vulkan:0 ...)")->capture_default_str();
     cmd->add_option("--seed", a->seed, "Seed of maps, flights and filters")->capture_default_str()->transform(any_seed());
+    cmd->add_option("--init-radius-m", a->init_radius_m,
+                    "Flight studies: particles start within this radius (m) of the true start (default: 300, the dissertation's); "
+                    "part of the configuration")
+        ->check(real_in(0, 1e5, Open::low));
     cmd->add_option("--shard", a->shard, "Run the i-th of n slices of the job list (i/n)")
         ->capture_default_str()
         ->check(CLI::Validator(

@@ -1,5 +1,6 @@
 // Job bookkeeping shared by every study: job list, shards, resume, merge and provenance.
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -80,7 +81,13 @@ std::string shell_word(const std::string& text) {
 }
 
 std::string command_prefix(const ExperimentOptions& o, const std::string& out) {
-    return "trnkit experiment " + o.study + (o.quick ? " --quick" : "") + " --seed " + std::to_string(o.seed) + " --backend " +
+    std::string radius;
+    if (!std::isnan(o.init_radius_m)) {
+        char text[32];
+        std::snprintf(text, sizeof text, " --init-radius-m %.17g", o.init_radius_m);  // reads back as the same double
+        radius = text;
+    }
+    return "trnkit experiment " + o.study + (o.quick ? " --quick" : "") + " --seed " + std::to_string(o.seed) + radius + " --backend " +
            shell_word(o.backend) + " --out " + shell_word(out);
 }
 
@@ -93,6 +100,13 @@ std::size_t run_experiment(const ExperimentOptions& o) {
     config["quick"] = o.quick;
     config["seed"] = o.seed;
     config["backend"] = o.backend;
+    if (!std::isnan(o.init_radius_m)) {  // part of the configuration: jobs of another radius are refused, not mixed
+        if (!config.contains("init_radius_m"))
+            throw Error("experiment " + o.study + ": --init-radius-m: this study has no start radius (only conversion, robustness, odometry, odometry-wind)");
+        if (!(o.init_radius_m > 0 && o.init_radius_m <= 1e5))
+            throw Error("experiment: --init-radius-m " + std::to_string(o.init_radius_m) + " must be in (0, 100000]");
+        config["init_radius_m"] = o.init_radius_m;
+    }
     const std::vector<Json> jobs = study->jobs(config);
     std::set<std::string> ids;
     for (const Json& j : jobs)

@@ -40,8 +40,10 @@ Json flight_config(bool quick) {
             {"flight_year", kFlightYear},
             // The filter's defaults are part of the configuration: job files made before the
             // displacement-vector motion model and the lock monitor (issue 12) are refused, not mixed.
-            {"filter", "defaults: KLD (eps 0.05, q 0.9, 5 m bins, 100..2000), 300 m init radius, motion along the odometry's "
-                       "displacement vector (alpha 0.05/0.03/0.2, eps 1 m/2 deg), lock monitor on (48 probes, contrast 3/5.5)"}};
+            {"filter", "defaults: KLD (eps 0.05, q 0.9, 5 m bins, 100..2000), motion along the odometry's "
+                       "displacement vector (alpha 0.05/0.03/0.2, eps 1 m/2 deg), lock monitor on (48 probes, contrast 3/5.5, "
+                       "fix +5.5 per drift bound from dead reckoning, held 3 steps)"},
+            {"init_radius_m", filter::FilterConfig{}.init_radius_m}};  // trnkit experiment --init-radius-m
 }
 
 // One localization flight; writes the per-step CSV (and plots when asked) into the job folder.
@@ -67,6 +69,7 @@ Json fly(const Json& c, const std::string& preset_name, const std::string& conve
     cfg.metres_per_pixel = map->metres_per_pixel;
     cfg.conversion = filter::Conversion::parse(conversion);
     cfg.seed = mix_seed(ctx.seed, 200 + run);
+    cfg.init_radius_m = c.at("init_radius_m");
     filter::ParticleFilter pf(scorer, cfg);
     const filter::LocalizationResult r = filter::run_localization(source, pf);
     const filter::LocalizationSummary& s = r.summary;

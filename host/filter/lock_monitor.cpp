@@ -25,6 +25,8 @@ void LockMonitorConfig::validate() const {
     in_range(min_contrast, 0, 100, "min_contrast");
     in_range(confident_contrast, min_contrast, 100, "confident_contrast");
     in_range(converged_m, 0, 1e5, "converged_m");
+    in_range(fix_far_contrast, 0, 100, "fix_far_contrast");
+    in_range(static_cast<double>(fix_steps), 1, 1e6, "fix_steps");
     in_range(static_cast<double>(weak_steps), 1, 1e6, "weak_steps");
     in_range(drift_fraction, 0, 10, "drift_fraction");
     in_range(drift_floor_m, 0, 1e5, "drift_floor_m");
@@ -44,12 +46,13 @@ void LockMonitor::reset(double x, double y, double uncertainty_m) {
     dead_x_ = x, dead_y_ = y;
     since_fix_m_ = 0;
     fix_uncertainty_m_ = uncertainty_m;
-    weak_run_ = cooldown_ = 0;
+    weak_run_ = cooldown_ = candidate_run_ = 0;
 }
 
 void LockMonitor::predict(double dx, double dy) {
     if (!std::isfinite(dx) || !std::isfinite(dy)) return;
     dead_x_ += dx, dead_y_ += dy;
+    candidate_x_ += dx, candidate_y_ += dy;
     since_fix_m_ += std::hypot(dx, dy) * mpp_;
 }
 
@@ -78,11 +81,19 @@ LockReport LockMonitor::assess(double best_ncc, std::span<const ParticleScore> p
         r.weak = r.contrast < config_.min_contrast;
     }
     const bool converged = spread_m <= config_.converged_m;
-    r.confident = converged && r.contrast >= config_.confident_contrast;
     r.drift_m = std::hypot(ex - dead_x_, ey - dead_y_) * mpp_;
     r.drift_bound_m = fix_uncertainty_m_ + config_.drift_floor_m + config_.drift_fraction * since_fix_m_;
     r.inconsistent = converged && r.drift_m > r.drift_bound_m;
     weak_run_ = r.weak ? weak_run_ + 1 : 0;
+    // A fix candidate: contrast enough for its distance from dead reckoning (lock_monitor.hpp).
+    const double far = r.drift_bound_m > 0 ? r.drift_m / r.drift_bound_m : (r.drift_m > 0 ? INFINITY : 0);
+    r.fix_contrast = config_.confident_contrast + config_.fix_far_contrast * far;
+    const bool candidate = converged && r.contrast >= r.fix_contrast;
+    const bool same_track = candidate_run_ > 0 && std::hypot(ex - candidate_x_, ey - candidate_y_) * mpp_ <= config_.converged_m;
+    candidate_run_ = !candidate ? 0 : same_track ? candidate_run_ + 1 : 1;
+    candidate_x_ = ex, candidate_y_ = ey;
+    r.fix_run = candidate_run_;
+    r.confident = candidate_run_ >= config_.fix_steps;
     if (r.confident) {  // a fix: dead reckoning restarts here
         dead_x_ = ex, dead_y_ = ey;
         since_fix_m_ = 0;
@@ -94,6 +105,7 @@ LockReport LockMonitor::assess(double best_ncc, std::span<const ParticleScore> p
         --cooldown_;
         return r;  // the widened search is still settling: no verdict
     }
+    if (candidate) return r;  // strong evidence still being confirmed: no verdict either way
     if (r.inconsistent || weak_run_ >= config_.weak_steps) {
         r.lost = true;
         r.widen_radius_m = std::min(config_.widen_radius_m, r.drift_bound_m);

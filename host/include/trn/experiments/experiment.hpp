@@ -5,6 +5,7 @@
 // `merge` turns the job outputs into Markdown + CSV tables with the dissertation's numbers in
 // adjacent columns, gnuplot plots and a provenance JSON. A merge refuses job outputs whose
 // configuration differs from the one asked for.
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -25,6 +26,7 @@ struct ExperimentOptions {
     std::string shard = "1/1";   // run jobs i, i+n, i+2n ... (1-based i)
     std::string job;             // run only the job with this id (what --list-jobs prints)
     std::uint64_t seed = 1;
+    double init_radius_m = NAN;  // flight studies: particles start within this radius (m); NaN: the study's 300 m
     bool quick = false;          // reduced but meaningful version (CI)
     bool list_jobs = false;      // print one command per job and exit
     bool list_ids_only = false;  // with list_jobs: print only the job ids, one a line (scripts/experiment-*)

@@ -5,14 +5,23 @@
 //     contrast = (best NCC - probes' mean) / probes' sd. A true lock stands out; a wrong one is
 //     one more local maximum of similar texture. Weak = contrast below `min_contrast`.
 //   - odometry consistency: the estimate against dead reckoning (odometry increments) from the
-//     last fix (a step with contrast >= `confident_contrast` whose particle cloud has converged to
-//     within `converged_m` rms; the start counts as a fix within the initialisation radius);
-//     leaving the odometry's plausible drift (`drift_fraction` of the distance since, plus
-//     `drift_floor_m`, plus the fix's own uncertainty) is inconsistent. While the cloud is still
-//     spread (converging) neither a fix nor an inconsistency is declared: its mean means little.
-// Lost = inconsistent without being a fix, or weak for `weak_steps` steps in a row. A fix far
-// from dead reckoning is accepted: a match that stands out that much outranks drifting odometry
-// (that is how a wrong start is left behind).
+//     last fix (the start counts as a fix within the initialisation radius); leaving the
+//     odometry's plausible drift (`drift_fraction` of the distance since, plus `drift_floor_m`,
+//     plus the fix's own uncertainty) is inconsistent. While the cloud is still spread (rms above
+//     `converged_m`) neither a fix nor an inconsistency is declared: its mean means little.
+// A fix restarts dead reckoning at the estimate and forgets the start's uncertainty, which cannot
+// be undone (every later widening searches around it), so it needs more than one good step:
+//   - the contrast must reach `confident_contrast` plus `fix_far_contrast` per drift bound of
+//     distance from dead reckoning. Why: a place far from dead reckoning is a priori less likely,
+//     and the farther the filter may look, the more places compete and the higher the best of the
+//     wrong ones scores (look-elsewhere). Wrong places ~250 m from the start of a 300 m prior
+//     reached 5.1-7.9 (FL-200, UL-200-wind and FC-300-wind seed 1), true locks average 10-12
+//     (docs/RESULTS.md); so a fix at the drift bound needs twice the contrast of one at dead
+//     reckoning (the wrong places above would need ~9.6);
+//   - and that for `fix_steps` consecutive steps on one track (each estimate within `converged_m`
+//     of the previous one moved by the odometry): one lucky frame is not a place.
+// A candidate still being confirmed is not declared lost (its evidence is strong, not weak).
+// Lost = inconsistent without being a candidate fix, or weak for `weak_steps` steps in a row.
 // When lost, the filter re-scatters `widen_fraction` of its particles around the dead-reckoned
 // position, within the drift bound (at most `widen_radius_m`); the rest keep the current
 // hypothesis, which wins again at once if it was right. The monitor then waits `cooldown_steps`
@@ -41,6 +50,8 @@ struct LockMonitorConfig {
     double min_contrast = 3.0;          // best NCC must exceed the probes' mean by this many sd
     double confident_contrast = 5.5;    // a step this distinct is a fix: dead reckoning restarts there
     double converged_m = 30;            // ... if the particle cloud is within this rms radius
+    double fix_far_contrast = 5.5;      // ... plus this much per drift bound of distance from dead reckoning
+    std::size_t fix_steps = 3;          // ... held for this many consecutive steps on one track
     std::size_t weak_steps = 8;         // consecutive weak steps that make "lost"
     double drift_fraction = 0.15;       // allowed departure from dead reckoning per metre flown
     double drift_floor_m = 40;          // ... plus this
@@ -54,7 +65,9 @@ struct LockMonitorConfig {
 struct LockReport {
     double best_ncc = NAN, probe_mean = NAN, probe_sd = NAN, contrast = NAN;
     double drift_m = NAN, drift_bound_m = NAN;  // |estimate - dead reckoning| and its bound
-    bool weak = false, confident = false, inconsistent = false, lost = false;
+    double fix_contrast = NAN;  // the contrast a fix at this distance from dead reckoning needs
+    std::size_t fix_run = 0;    // consecutive steps that met it on one track (a fix at fix_steps)
+    bool weak = false, confident = false, inconsistent = false, lost = false;  // confident: a fix
     double widen_radius_m = 0;  // when lost: re-scatter within this radius of dead reckoning
 };
 
@@ -84,7 +97,8 @@ private:
     double mpp_;
     std::uint64_t rng_;
     double dead_x_ = 0, dead_y_ = 0, since_fix_m_ = 0, fix_uncertainty_m_ = 0;
-    std::size_t weak_run_ = 0, cooldown_ = 0;
+    double candidate_x_ = 0, candidate_y_ = 0;  // last step of the current fix candidate, moved by odometry
+    std::size_t weak_run_ = 0, cooldown_ = 0, candidate_run_ = 0;
 };
 
 }  // namespace trn::filter
