@@ -148,7 +148,7 @@ public:
     Json config(bool quick) const override {
         Json c = shared_config();
         c["presets"] = quick ? std::vector<std::string>{"UC-300"} : std::vector<std::string>{"FL-200", "UR-200", "FC-300"};
-        c["distance_m"] = quick ? 60 : 1000;
+        c["distance_m"] = quick ? 12 : 1000;  // quick: 3 steps (a full-resolution step costs seconds)
         c["template_widths"] = quick ? std::vector<int>{48, 0} : std::vector<int>{160, 0};  // 0: full resolution (640 px)
         c["runs"] = 1;
         return c;
