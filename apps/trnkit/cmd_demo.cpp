@@ -27,7 +27,7 @@ namespace {
 
 struct DemoArgs {
     std::string scenario = "FR-200-wind", backend = "fastest", out;  // crab, climbs, barometer: scenario.hpp
-    double distance_km = 2.0, rate_hz = 5, sparse = 1;
+    double distance_km = NAN, rate_hz = 5, sparse = 1;  // NaN: 2 km, or a one_loop preset's own length
     double init_radius_m = filter::FilterConfig{}.init_radius_m;  // the dissertation's 300 m
     int template_width = 160;
     int map_year = 2008, flight_year = 2010;
@@ -46,7 +46,8 @@ void demo(const DemoArgs& a) {
     namespace fs = std::filesystem;
     const auto t0 = std::chrono::steady_clock::now();
     const sim::Scenario& preset = sim::find_scenario(a.scenario);
-    if (!(a.distance_km > 0)) throw Error("--distance-km must be > 0");
+    const double distance_km = std::isnan(a.distance_km) ? (preset.one_loop ? preset.distance_m() / 1000 : 2.0) : a.distance_km;
+    if (!(distance_km > 0)) throw Error("--distance-km must be > 0");
     const std::string out = a.out.empty() ? (fs::temp_directory_path() / "trnkit-demo").string() : a.out;
     // The default folder is demo's by definition (older trnkit versions wrote it without a marker).
     const bool force = a.force || a.out.empty();
@@ -57,8 +58,11 @@ void demo(const DemoArgs& a) {
     mo.style = preset.terrain;
     mo.seed = a.seed;
     mo.year = a.map_year;
-    const double footprint = preset.max_altitude_m() / sim::Camera{}.focal_px() * 400 * 2;
-    mo.width_m = mo.height_m = std::ceil((preset.nominal_size_m * 1.1 + footprint + 100) / 100) * 100;
+    sim::FlightConfig fc;
+    fc.scenario = preset;
+    fc.seed = a.seed;
+    fc.frames = static_cast<std::size_t>(std::llround(distance_km * 1000 / preset.speed_mps * preset.fps));
+    mo.width_m = mo.height_m = sim::fitting_map_edge_m(fc);
     std::cerr << "generating the " << sim::to_string(mo.style) << " map (" << mo.width_m << " m square, " << a.map_year
               << ") and the world " << a.flight_year - a.map_year << " years later\n";
     const sim::Map map = sim::generate_procedural_map(mo);
@@ -80,10 +84,6 @@ void demo(const DemoArgs& a) {
     }
     std::cerr << "\n";
 
-    sim::FlightConfig fc;
-    fc.scenario = preset;
-    fc.seed = a.seed;
-    fc.frames = static_cast<std::size_t>(std::llround(a.distance_km * 1000 / preset.speed_mps * preset.fps));
     const std::size_t stride = std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(preset.fps / a.rate_hz)));
     filter::SimulatedFlightSource source(world, fc, stride);
 
@@ -99,7 +99,8 @@ void demo(const DemoArgs& a) {
     filter::ParticleFilter pf(scorer, cfg);
     const filter::LocalizationResult result = filter::run_localization(source, pf, progress_bar);
 
-    std::cout << "DPC-PFL demo: " << preset.name << ", " << a.distance_km << " km at " << preset.altitude_m << " m, map "
+    std::cout << "DPC-PFL demo: " << preset.name << ", " << distance_km << " km at " << preset.altitude_m
+              << (preset.other_altitude_m > 0 ? " and " + std::to_string(static_cast<int>(preset.other_altitude_m)) : std::string()) << " m, map "
               << a.flight_year - a.map_year << " years older than the flight, backend " << backend->info().name << ", seed " << a.seed
               << "\n";
     LocalizationReport report;
@@ -117,13 +118,14 @@ void demo(const DemoArgs& a) {
 void add_demo_command(CLI::App& app) {
     auto a = std::make_shared<DemoArgs>();
     auto* cmd = app.add_subcommand("demo", "Simulate a ~2 km flight over the built-in procedural map and localize it (DPC-PFL)");
-    cmd->add_option("--scenario", a->scenario, "Scenario preset (terrain, shape, altitude)")->capture_default_str();
-    cmd->add_option("--distance-km", a->distance_km, "Distance to fly")->capture_default_str()->check(real_in(0, 100, Open::low));
+    cmd->add_option("--scenario", a->scenario, "Scenario preset (terrain, shape, altitude; -wind, -long twins)")->capture_default_str();
+    cmd->add_option("--distance-km", a->distance_km, "Distance to fly (default: 2, or a -long preset's whole flight)")
+        ->check(real_in(0, 100, Open::low));
     cmd->add_option("--backend", a->backend, "Scoring backend or 'fastest'")->capture_default_str();
     cmd->add_option("--rate", a->rate_hz, "Filter rate in Hz")->capture_default_str()->check(real_in(0, 1000, Open::low));
-    cmd->add_option("--template-width", a->template_width, "Camera frames are downscaled to this width before scoring")
+    cmd->add_option("--template-width", a->template_width, "Camera frames are downscaled to this width before scoring ('full': not downscaled)")
         ->capture_default_str()
-        ->transform(whole_in(8, kMaxTemplateWidth));
+        ->transform(template_width_option());
     cmd->add_option("--sparse", a->sparse, "Share of template pixels scored (1 = dense)")->capture_default_str()->check(real_in(1e-4, 1.0));
     cmd->add_option("--map-year", a->map_year, "Year of the localization map")->capture_default_str()->transform(whole_in(kMinYear, kMaxYear));
     cmd->add_option("--flight-year", a->flight_year, "Year the flight sees")->capture_default_str()->transform(whole_in(kMinYear, kMaxYear));

@@ -220,9 +220,9 @@ void add_localize_command(CLI::App& app) {
         ->capture_default_str()
         ->transform(whole_in(1, kMaxParticles));
     cmd->add_option("--rate", a->rate_hz, "Filter rate in Hz (every fps/rate-th frame is used)")->capture_default_str()->check(real_in(0, 1000, Open::low));
-    cmd->add_option("--template-width", a->template_width, "Camera frames are downscaled to this width before scoring")
+    cmd->add_option("--template-width", a->template_width, "Camera frames are downscaled to this width before scoring ('full': not downscaled)")
         ->capture_default_str()
-        ->transform(whole_in(8, kMaxTemplateWidth));
+        ->transform(template_width_option());
     cmd->add_option("--sparse", a->sparse, "Share of template pixels scored (1 = dense)")->capture_default_str()->check(real_in(1e-4, 1.0));
     cmd->add_option("--out", a->out, "Output folder (default: DATASET/localize)");
     cmd->add_option("--init-radius-m", a->init_radius_m,

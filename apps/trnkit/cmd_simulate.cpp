@@ -34,7 +34,7 @@ void progress(std::size_t done, std::size_t total) { draw_progress(done, total, 
 
 // Builds the localization map (what a navigator would have on board) and the map the frames are
 // rendered from (the world at flight time, aged when --map-year differs from the base year).
-void make_maps(const SimulateArgs& a, const sim::Scenario& sc, sim::Map& base, sim::Map& world, int& world_year) {
+void make_maps(const SimulateArgs& a, const sim::FlightConfig& cfg, sim::Map& base, sim::Map& world, int& world_year) {
     world_year = a.map_year ? a.map_year : a.base_year;
     if (!a.map.empty()) {
         if (!(a.mpp > 0)) throw Error("--map needs --mpp (ground resolution in metres per pixel)");
@@ -55,13 +55,12 @@ void make_maps(const SimulateArgs& a, const sim::Scenario& sc, sim::Map& base, s
         return;
     }
     sim::ProceduralMapOptions o;
-    o.style = a.procedural.empty() ? sc.terrain : sim::parse_terrain_style(a.procedural);
+    o.style = a.procedural.empty() ? cfg.scenario.terrain : sim::parse_terrain_style(a.procedural);
     o.seed = a.seed;
     o.year = a.base_year;
     o.metres_per_pixel = a.mpp > 0 ? a.mpp : 1.0;
-    // Big enough for the scenario's loop plus the camera footprint, unless given.
-    const double footprint = sc.altitude_m / sim::Camera{640, 480, a.fov}.focal_px() * 400 * 2;
-    o.width_m = o.height_m = a.size_m > 0 ? a.size_m : std::ceil((sc.nominal_size_m * 1.1 + footprint + 100) / 100) * 100;
+    // Big enough for the scenario's loop plus the camera footprint at its highest altitude, unless given.
+    o.width_m = o.height_m = a.size_m > 0 ? a.size_m : sim::fitting_map_edge_m(cfg);
     if (!std::isnan(a.lat) && !std::isnan(a.lon)) o.origin = {a.lat, a.lon};
     o.validate();  // a bad size is one error line, not a progress line and then the error
     std::cerr << "generating a " << sim::to_string(o.style) << " map of " << o.width_m << " x " << o.height_m << " m at "
@@ -93,7 +92,7 @@ void simulate(const SimulateArgs& a) {
     const std::string dir = staged.path();
     sim::Map base, world;
     int world_year = 0;
-    make_maps(a, preset, base, world, world_year);
+    make_maps(a, cfg, base, world, world_year);
     sim::FlightSimulator flight(world, cfg);
 
     sim::AirWriter writer(dir);
@@ -160,7 +159,7 @@ void read_back(const std::string& folder) {
 void add_simulate_command(CLI::App& app) {
     auto a = std::make_shared<SimulateArgs>();
     auto* cmd = app.add_subcommand("simulate", "Simulate a UAV flight over a map and write an AIR dataset (or --read one back)");
-    cmd->add_option("--scenario", a->scenario, "Preset: FL-200 FL-300 FR-200 FR-300 FC-200 FC-300 UL-200 ... UC-300");
+    cmd->add_option("--scenario", a->scenario, "Preset: FL-200 FL-300 FR-200 FR-300 FC-200 FC-300 UL-200 ... UC-300, each also as <name>-wind and <name>-long");
     cmd->add_option("--map", a->map, "Orthophoto file to fly over (any image OpenCV reads)");
     cmd->add_option("--mpp", a->mpp, "Map ground resolution, metres per pixel (required with --map; default 1 for procedural)")
         ->check(real_in(0, 1000, Open::low));
@@ -172,7 +171,7 @@ void add_simulate_command(CLI::App& app) {
     cmd->add_option("--map-year", a->map_year, "Render the frames from the map of this year (localize on the base year)")
         ->transform(whole_in(kMinYear, kMaxYear));
     cmd->add_option("--base-year", a->base_year, "Year of the localization map")->capture_default_str()->transform(whole_in(kMinYear, kMaxYear));
-    auto* frames = cmd->add_option("--frames", a->frames, "Number of frames (default: the scenario's 320 s)")->transform(whole_in(1, 200000));
+    auto* frames = cmd->add_option("--frames", a->frames, "Number of frames (default: the scenario's whole flight, 320 s; -long: Table 2.2's distance)")->transform(whole_in(1, 200000));
     cmd->add_option("--seconds", a->seconds, "Seconds of flight instead of --frames")->excludes(frames)->check(real_in(0, 4000, Open::low));
     cmd->add_option("--fov", a->fov, "Horizontal field of view, degrees")->capture_default_str()->check(real_in(1, 170, Open::both));
     cmd->add_option("--noise", a->noise, "Gaussian image noise, share of full scale")->capture_default_str()->check(real_in(0, 1));

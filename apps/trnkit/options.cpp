@@ -28,6 +28,20 @@ CLI::Validator whole_in(std::uint64_t lo, std::uint64_t hi) {
         "in " + range);
 }
 
+CLI::Validator template_width_option() {
+    const CLI::Validator pixels = whole_in(8, kMaxTemplateWidth);
+    return CLI::Validator(
+        [pixels](std::string& text) -> std::string {
+            if (text == "full") {
+                text = "0";
+                return {};
+            }
+            std::string why = pixels(text);
+            return why.empty() ? why : why + " or 'full'";
+        },
+        "full or in [8, " + std::to_string(kMaxTemplateWidth) + "]");
+}
+
 CLI::Validator any_seed() { return whole_in(0, std::numeric_limits<std::uint64_t>::max()); }
 
 CLI::Validator real_in(double lo, double hi, Open open) {

@@ -17,6 +17,10 @@ namespace trn::cli {
 // own conversion (strtoull with base 0) reads the value that was checked. Help shows "in [lo, hi]".
 CLI::Validator whole_in(std::uint64_t lo, std::uint64_t hi);
 
+// --template-width: "full" (frames scored at full resolution; rewritten to 0, BackendScorerOptions'
+// "keep") or a whole number of pixels in [8, kMaxTemplateWidth].
+CLI::Validator template_width_option();
+
 // Any unsigned 64-bit seed ("in [0, 2^64-1]", no sign).
 CLI::Validator any_seed();
 

@@ -50,5 +50,8 @@ std::unique_ptr<Study> make_sampling_study();
 std::unique_ptr<Study> make_conversion_study();
 std::unique_ptr<Study> make_robustness_study();
 std::unique_ptr<Study> make_odometry_study(bool wind);  // the presets or their '-wind' twins
+// study_long_flights.cpp: the '-long' presets whole (Table 2.2 lengths); 160 px vs full-resolution templates.
+std::unique_ptr<Study> make_long_odometry_study();
+std::unique_ptr<Study> make_template_width_study();
 
 }  // namespace trn::experiments

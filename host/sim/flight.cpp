@@ -1,5 +1,6 @@
 #include "trn/sim/flight.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "random.hpp"
@@ -16,15 +17,22 @@ double footprint_radius_m(const Camera& c, double altitude_m) {
     return 0.5 * std::hypot(c.width, c.height) * mpp_cam;
 }
 
+// Distance (metres) the trajectory keeps from the map's edges: the whole footprint stays on the map
+// at the highest altitude, with room for roll/pitch wobble.
+double edge_margin_m(const FlightConfig& cfg) {
+    const double top = cfg.scenario.max_altitude_m();
+    const double wobble = top * std::tan(3 * cfg.camera_roll_pitch_sd_deg * kDeg);
+    return footprint_radius_m(cfg.camera, top) + wobble + 5;
+}
+
 Trajectory make_trajectory(const Map& map, const FlightConfig& cfg) {
     cfg.camera.validate();
     if (!(cfg.scenario.altitude_m > 0)) throw Error("flight: altitude must be > 0");
+    if (!(cfg.scenario.other_altitude_m >= 0)) throw Error("flight: other_altitude_m must be >= 0");
     if (!(cfg.scenario.fps > 0)) throw Error("flight: fps must be > 0");
     cfg.scenario.realism.validate();
-    // Keep the whole footprint on the map at the highest altitude, with room for roll/pitch wobble.
     const double top = cfg.scenario.max_altitude_m();
-    const double wobble = top * std::tan(3 * cfg.camera_roll_pitch_sd_deg * kDeg);
-    const double margin = footprint_radius_m(cfg.camera, top) + wobble + 5;
+    const double margin = edge_margin_m(cfg);
     if (map.width_m() < 2 * margin + 20 || map.height_m() < 2 * margin + 20)
         throw Error("flight: the map (" + std::to_string(map.width_m()) + " x " + std::to_string(map.height_m()) +
                     " m) is too small for the camera footprint at " + std::to_string(top) +
@@ -42,6 +50,19 @@ OdometryConfig odometry_config(const FlightConfig& config) {
 }
 
 }  // namespace
+
+double fitting_map_edge_m(const FlightConfig& cfg) {
+    const Scenario& s = cfg.scenario;
+    if (!s.one_loop) return std::ceil((s.nominal_size_m * 1.1 + 2 * footprint_radius_m(cfg.camera, s.max_altitude_m()) + 100) / 100) * 100;
+    // Measure the loop's extent at full size (an area far larger than the loop: nothing shrinks).
+    const Trajectory loop(s.shape, s.nominal_size_m, s.speed_mps, 0, 0, 1e7, 1e7);
+    double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+    for (double d = 0; d <= loop.loop_length_m(); d += 0.5) {
+        const TrajectoryState st = loop.at(d / s.speed_mps);
+        x0 = std::min(x0, st.x_m), x1 = std::max(x1, st.x_m), y0 = std::min(y0, st.y_m), y1 = std::max(y1, st.y_m);
+    }
+    return std::ceil((std::max(x1 - x0, y1 - y0) + 2 * edge_margin_m(cfg) + 25) / 100) * 100;
+}
 
 double measured_template_scale(const FlightFrame& f, const Camera& camera, double metres_per_pixel) {
     // A barometer far off (or a reading near the ground) must not give a non-positive scale.
@@ -66,10 +87,15 @@ FlightSimulator::FlightSimulator(const Map& map, const FlightConfig& config)
       }()),
       barometer_(BarometerConfig{config.scenario.realism.baro_noise_m, config.scenario.realism.baro_bias_walk_m_per_sqrt_s,
                                  detail::mix64(config.seed + 2)}),
-      conditions_(config.scenario.realism, config.scenario.altitude_m, trajectory_.at(0).heading_rad, config.seed) {
+      conditions_(config.scenario.realism, config.scenario.altitude_m, trajectory_.at(0).heading_rad, config.seed),
+      profile_(config.scenario) {
     previous_ = trajectory_.at(0);
-    previous_altitude_m_ = conditions_.altitude_m(0);
+    previous_altitude_m_ = altitude_m(0);
     start_x_m_ = previous_.x_m, start_y_m_ = previous_.y_m;
+}
+
+double FlightSimulator::altitude_m(double t) const {
+    return profile_.altitude_m(t) + (conditions_.altitude_m(t) - config_.scenario.altitude_m);
 }
 
 bool FlightSimulator::next(FlightFrame& f) {
@@ -77,7 +103,7 @@ bool FlightSimulator::next(FlightFrame& f) {
     const std::size_t i = next_index_++;
     const double dt = 1.0 / config_.scenario.fps, t = i * dt;
     const TrajectoryState st = trajectory_.at(t);
-    const double mpp = map_.metres_per_pixel, alt = conditions_.altitude_m(t);
+    const double mpp = map_.metres_per_pixel, alt = altitude_m(t);
 
     f.index = i;
     f.time_s = t;
@@ -104,7 +130,7 @@ bool FlightSimulator::next(FlightFrame& f) {
         const Vec3 delta{st.x_m - previous_.x_m, -(st.y_m - previous_.y_m), alt - previous_altitude_m_};
         f.odometry_m = odometry_.step(delta, dt, st.yaw_rate_rad_s);
     }
-    f.odometry_m.z += conditions_.altitude_m(0);  // odometry is initialised with the first height, then drifts
+    f.odometry_m.z += altitude_m(0);  // odometry is initialised with the first height, then drifts
     f.magnetometer_heading_rad = magnetometer_.read(f.truth.yaw_rad);
     f.baro_altitude_m = barometer_.read(alt, i == 0 ? 0 : dt);
     previous_ = st;

@@ -10,6 +10,11 @@ namespace trn::sim {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+constexpr double kTurnRadiusM = 40;  // U-turns of the line, corners of the rectangle
+
+// Flight distances of the dissertation's AIR flights (Table 2.2), metres, in preset order
+// (F/U x L/R/C x 200/300).
+constexpr double kTable22DistanceM[12] = {2936, 2736, 4748, 4541, 1065, 1028, 2592, 2496, 4418, 4542, 1016, 970};
 
 std::vector<Scenario> make_presets() {
     std::vector<Scenario> out;
@@ -36,6 +41,17 @@ std::vector<Scenario> make_presets() {
                 out.push_back(s);
             }
     add_wind_twins();
+    // The -long twins of the 12 AIR presets: the dissertation's distance in one loop, with level
+    // changes to the other altitude of the family (200 <-> 300 m).
+    for (std::size_t i = 0; i < 12; ++i) {
+        Scenario s = out[i];
+        s.name += "-long";
+        s.other_altitude_m = s.altitude_m == 200 ? 300 : 200;
+        s.nominal_size_m = Trajectory::nominal_size_for_loop(s.shape, kTable22DistanceM[i]);
+        s.duration_s = kTable22DistanceM[i] / s.speed_mps;
+        s.one_loop = true;
+        out.push_back(s);
+    }
     return out;
 }
 
@@ -112,7 +128,7 @@ Trajectory::Trajectory(TrajectoryShape shape, double size, double speed, double 
                     " m) is too small; the map must exceed the camera footprint by at least 20 m");
     // The loop at nominal size around (0, 0), flown clockwise on the map (y points south).
     std::vector<double> xs{0}, ys{0};
-    const double turn = 40;  // turn radius, metres
+    const double turn = kTurnRadiusM;
     if (shape == TrajectoryShape::Circle) {
         xs = {size / 2}, ys = {0};
         arc(xs, ys, 0, 0, size / 2, 0, 2 * kPi);
@@ -151,6 +167,15 @@ Trajectory::Trajectory(TrajectoryShape shape, double size, double speed, double 
         if (i) cumulative_[i] = cumulative_[i - 1] + std::hypot(xs[i] - xs[i - 1], ys[i] - ys[i - 1]);
     }
     xs_ = std::move(xs), ys_ = std::move(ys);
+}
+
+double Trajectory::nominal_size_for_loop(TrajectoryShape shape, double length) {
+    // Inverts the loop lengths of the constructor: circle pi*d; line out and back 2*size plus two
+    // half turns; rectangle size x 0.7 size with four rounded corners.
+    const double r = kTurnRadiusM;
+    if (shape == TrajectoryShape::Circle) return length / kPi;
+    if (shape == TrajectoryShape::Line) return (length - 2 * kPi * r) / 2;
+    return (length + (8 - 2 * kPi) * r) / 3.4;
 }
 
 void Trajectory::sample(double s, double& x, double& y) const {

@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include "trn/scoring.hpp"
+#include "trn/sim/altitude_profile.hpp"
 #include "trn/sim/camera.hpp"
 #include "trn/sim/field_conditions.hpp"
 #include "trn/sim/map.hpp"
@@ -55,6 +56,11 @@ struct FlightConfig {
     std::uint64_t seed = 1;               // seeds noise, odometry, magnetometer and wobble
 };
 
+// Edge (metres) of a square procedural map that holds the flight: the scenario's loop at nominal
+// size plus the camera footprint at its highest altitude. A one_loop ("-long") preset's loop is
+// measured so that it is never shrunk; the others keep the studies' 1.1 x nominal size rule.
+double fitting_map_edge_m(const FlightConfig& config);
+
 class FlightSimulator {
 public:
     // Renders from `map` (keep it alive while simulating). Throws trn::Error when the map is too
@@ -68,6 +74,8 @@ public:
     const FlightConfig& config() const { return config_; }
 
 private:
+    double altitude_m(double time_s) const;  // level changes plus the realism's swings
+
     const Map& map_;
     FlightConfig config_;
     Trajectory trajectory_;
@@ -77,6 +85,7 @@ private:
     Magnetometer magnetometer_;
     Barometer barometer_;
     FieldConditions conditions_;
+    AltitudeProfile profile_;
     TrajectoryState previous_;
     double previous_altitude_m_ = 0;
     double start_x_m_ = 0, start_y_m_ = 0;

@@ -9,6 +9,10 @@
 // The AIR presets are the dataset's idealised world: the camera points along the track, the
 // altitude is constant and known. Each has a twin "<name>-wind" (e.g. "FR-200-wind") with
 // field_realism() on: wind crab, climbs and descents, a noisy barometer, drifting odometry.
+// And a twin "<name>-long" (e.g. "FR-200-long") that flies the dissertation's distance of that
+// scenario (Table 2.2: 0.97-4.75 km) as one whole loop, climbing and descending between the
+// family's two altitudes, 200 and 300 m (altitude_profile.hpp); otherwise the AIR world.
+#include <algorithm>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -56,14 +60,22 @@ struct Scenario {
     double duration_s = 320;  // 16,000 frames at 50 FPS, as a real AIR flight
     double nominal_size_m = 1600;  // line length / rectangle long side / circle diameter
     Realism realism;               // all zero for the AIR presets
+    // Level changes ("-long" presets): level legs alternate between altitude_m and this altitude
+    // (0: none), joined by climbs / descents of climb_s seconds (altitude_profile.hpp).
+    double other_altitude_m = 0;
+    double climb_s = 40;
+    // "-long" presets: the flight is one whole loop at nominal size (maps are sized so that it is
+    // not shrunk: fitting_map_edge_m in flight.hpp), so its length is distance_m().
+    bool one_loop = false;
 
     // Highest altitude the flight reaches (the camera footprint must fit the map up there).
-    double max_altitude_m() const { return altitude_m * (1 + realism.altitude_change); }
+    double max_altitude_m() const { return std::max(altitude_m, other_altitude_m) * (1 + realism.altitude_change); }
+    double distance_m() const { return speed_mps * duration_s; }
 
     std::size_t frame_count() const;
 };
 
-const std::vector<Scenario>& scenario_presets();
+const std::vector<Scenario>& scenario_presets();  // the 12 AIR presets, then the -wind, then the -long twins
 // Throws trn::Error listing the valid names when `name` is not one.
 const Scenario& find_scenario(std::string_view name);
 
@@ -81,6 +93,8 @@ public:
     Trajectory(TrajectoryShape shape, double nominal_size_m, double speed_mps, double min_x, double min_y,
                double max_x, double max_y);
     TrajectoryState at(double time_s) const;
+    // The nominal size whose loop (at full size) is `loop_length_m` long.
+    static double nominal_size_for_loop(TrajectoryShape shape, double loop_length_m);
     double loop_length_m() const { return cumulative_.back(); }
 
 private:
