@@ -19,7 +19,7 @@
 namespace trn::experiments {
 namespace fs = std::filesystem;
 
-std::vector<std::string> study_names() { return {"metrics", "heading", "sampling", "conversion", "robustness", "odometry", "odometry-wind"}; }
+std::vector<std::string> study_names() { return {"metrics", "heading", "sampling", "conversion", "robustness", "odometry", "odometry-wind", "odometry-visual"}; }
 
 namespace {
 
@@ -31,6 +31,7 @@ std::unique_ptr<Study> make_study(const std::string& name, const std::string& sh
     if (name == "robustness") return make_robustness_study();
     if (name == "odometry") return make_odometry_study(false);
     if (name == "odometry-wind") return make_odometry_study(true);
+    if (name == "odometry-visual") return make_odometry_study(false, true);
     std::string names;
     for (const auto& n : study_names()) names += " " + n;
     throw Error("experiment: unknown study '" + name + "' (one of:" + names + ")");

@@ -49,6 +49,7 @@ std::unique_ptr<Study> make_heading_study(std::string orthophoto);
 std::unique_ptr<Study> make_sampling_study();
 std::unique_ptr<Study> make_conversion_study();
 std::unique_ptr<Study> make_robustness_study();
-std::unique_ptr<Study> make_odometry_study(bool wind);  // the presets or their '-wind' twins
+// The presets or their '-wind' twins; visual: odometry from the frames (+ Table 3.13).
+std::unique_ptr<Study> make_odometry_study(bool wind, bool visual = false);
 
 }  // namespace trn::experiments
