@@ -38,6 +38,8 @@ void VisualOdometryOptions::validate() const {
     if (max_features < 16 || max_features > 100000) throw Error("visual odometry: max_features " + std::to_string(max_features) + " is outside [16, 100000]");
     if (max_width < 32 || max_width > 16384) throw Error("visual odometry: max_width " + std::to_string(max_width) + " is outside [32, 16384]");
     if (!(ransac_threshold_px > 0 && ransac_threshold_px <= 50)) throw Error("visual odometry: ransac_threshold_px must be in (0, 50]");
+    if (ransac_iterations < 1 || ransac_iterations > 1000000) throw Error("visual odometry: ransac_iterations must be in [1, 1000000]");
+    if (!(ransac_confidence > 0 && ransac_confidence < 1)) throw Error("visual odometry: ransac_confidence must be in (0, 1)");
     if (min_inliers < 3) throw Error("visual odometry: min_inliers " + std::to_string(min_inliers) + " must be >= 3 (2 matches fix a similarity)");
     if (!(min_phase_response >= 0 && min_phase_response <= 1)) throw Error("visual odometry: min_phase_response must be in [0, 1]");
 }
@@ -95,7 +97,8 @@ FrameMotion VisualOdometry::track(GrayView frame) {
             why = std::to_string(from.size()) + " ORB matches";
         } else {
             std::vector<std::uint8_t> inlier;
-            const cv::Mat t = cv::estimateAffinePartial2D(from, to, inlier, cv::RANSAC, options_.ransac_threshold_px * prev.factor, 2000, 0.99);
+            const cv::Mat t = cv::estimateAffinePartial2D(from, to, inlier, cv::RANSAC, options_.ransac_threshold_px * prev.factor,
+                                                              static_cast<std::size_t>(options_.ransac_iterations), options_.ransac_confidence);
             m.inliers = static_cast<int>(std::count(inlier.begin(), inlier.end(), 1));
             const double a = t.empty() ? 0 : t.at<double>(0, 0), b = t.empty() ? 0 : t.at<double>(1, 0);
             const double scale = std::hypot(a, b);

@@ -21,6 +21,8 @@ struct VisualOdometryOptions {
     int max_features = 1500;           // ORB keypoints per frame
     int max_width = 640;               // wider frames are downscaled first (speed; shifts stay sub-pixel)
     double ransac_threshold_px = 2.0;  // inlier distance, pixels of the (downscaled) working frame
+    int ransac_iterations = 2000;
+    double ransac_confidence = 0.99;
     // Fewer RANSAC inliers than this and the feature motion is not trusted. A similarity has 4
     // degrees of freedom (2 matches fix it), so a few wrong matches always agree by chance: between
     // frames with no common ground we measured 4-6 (8 real pairs, rendered pairs: 4); 12 is twice
