@@ -30,7 +30,7 @@ struct VisualOdometryOptions {
     int min_inliers = 12;
     bool phase_correlation = true;     // fallback when the features fail (pure shift; same-size frames)
     // Phase-correlation peaks below this are not trusted: frames with no common ground peak at
-    // up to 0.022 (measured, 8 real pairs), overlapping rendered frames at ~1.1.
+    // up to 0.022 (measured, 8 real pairs), overlapping rendered frames at 0.21-1.17.
     double min_phase_response = 0.1;
 
     void validate() const;  // throws trn::Error naming the field
