@@ -44,7 +44,9 @@ void expect_recovers(const trn::filter::VisualOdometryOptions& o, trn::filter::M
                 north_m, g.east_m, g.north_m, m.inliers, m.response);
     EXPECT_NEAR(g.east_m, east_m, kBoundM);
     EXPECT_NEAR(g.north_m, north_m, kBoundM);
-    if (method == trn::filter::MotionMethod::Features) EXPECT_NEAR(m.rotation_rad / kDeg, turn_deg, 0.2);
+    if (method == trn::filter::MotionMethod::Features) {
+        EXPECT_NEAR(m.rotation_rad / kDeg, turn_deg, 0.2);
+    }
 }
 
 }  // namespace
