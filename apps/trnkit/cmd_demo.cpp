@@ -12,12 +12,14 @@
 #include "commands.hpp"
 #include "filter_model_options.hpp"
 #include "localization_report.hpp"
+#include "odometry_option.hpp"
 #include "options.hpp"
 #include "progress.hpp"
 #include "trn/error.hpp"
 #include "trn/filter/backend_choice.hpp"
 #include "trn/filter/flight_source.hpp"
 #include "trn/filter/localization.hpp"
+#include "trn/filter/visual_odometry.hpp"
 #include "trn/io/output_folder.hpp"
 #include "trn/registry.hpp"
 #include "trn/sim/procedural_map.hpp"
@@ -27,6 +29,7 @@ namespace {
 
 struct DemoArgs {
     std::string scenario = "FR-200-wind", backend = "fastest", out;  // crab, climbs, barometer: scenario.hpp
+    std::string odometry;  // simulated (default: the demo's figure stays) | visual
     double distance_km = NAN, rate_hz = 5, sparse = 1;  // NaN: 2 km, or a one_loop preset's own length
     double init_radius_m = filter::FilterConfig{}.init_radius_m;  // the dissertation's 300 m
     int template_width = 160;
@@ -85,7 +88,10 @@ void demo(const DemoArgs& a) {
     std::cerr << "\n";
 
     const std::size_t stride = std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(preset.fps / a.rate_hz)));
-    filter::SimulatedFlightSource source(world, fc, stride);
+    filter::SimulatedFlightSource simulated(world, fc, stride);
+    filter::VisualOdometrySource visual(simulated, world.metres_per_pixel);
+    const bool use_visual = a.odometry == "visual";
+    filter::FlightSource& source = use_visual ? static_cast<filter::FlightSource&>(visual) : simulated;
 
     filter::BackendScorerOptions so;
     so.template_width = a.template_width;
@@ -109,6 +115,7 @@ void demo(const DemoArgs& a) {
     report.strings = {{"scenario", preset.name}};
     report.numbers = {{"map_year", static_cast<double>(a.map_year)}, {"flight_year", static_cast<double>(a.flight_year)},
                       {"init_radius_m", a.init_radius_m}};
+    record_odometry(a.odometry, use_visual ? &visual : nullptr, report);
     report_localization(result, *backend, cfg, map.image.view(), map.metres_per_pixel, report, std::cout);
     std::printf("total %.1f s (maps %.1f s)\n", seconds_since(t0), maps_s);
 }
@@ -138,6 +145,8 @@ void add_demo_command(CLI::App& app) {
     cmd->add_option("--out", a->out, "Output folder (default: <temp>/trnkit-demo)");
     cmd->add_flag("--no-plots", a->no_plots, "Skip the gnuplot step");
     cmd->add_flag("--force", a->force, "Write into a non-empty folder that is not an earlier output of demo");
+    add_odometry_option(*cmd, a->odometry, {"simulated", "visual"},
+                        "Odometry fed to the filter: simulated (statistical drift, sim/sensors.hpp) or visual (computed from the frames)");
     add_filter_model_options(*cmd, a->model);
     cmd->callback([a] { demo(*a); });
 }

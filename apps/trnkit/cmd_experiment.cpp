@@ -13,7 +13,7 @@ namespace trn::cli {
 
 void add_experiment_command(CLI::App& app) {
     auto a = std::make_shared<experiments::ExperimentOptions>();
-    auto* cmd = app.add_subcommand("experiment", "Reproduce a dissertation study: metrics, heading, sampling, conversion, robustness, odometry (odometry-wind: the -wind presets; odometry-long: the -long presets, Table 2.2 lengths), template-width");
+    auto* cmd = app.add_subcommand("experiment", "Reproduce a dissertation study: metrics, heading, sampling, conversion, robustness, odometry (odometry-wind: the -wind presets; odometry-visual: odometry from the frames, Table 3.13; odometry-long: the -long presets, Table 2.2 lengths), template-width");
     cmd->add_option("name", a->study, "Study to run")->required()->check(CLI::IsMember(experiments::study_names()));
     cmd->add_flag("--quick", a->quick, "Reduced but meaningful version (CI)");
     cmd->add_option("--out", a->out, "Output folder (default: experiments/NAME[-quick])");

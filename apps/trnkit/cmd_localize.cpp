@@ -13,6 +13,7 @@
 #include "filter_model_options.hpp"
 #include "localization_report.hpp"
 #include "localize_inputs.hpp"
+#include "odometry_option.hpp"
 #include "options.hpp"
 #include "progress.hpp"
 #include "trn/error.hpp"
@@ -20,6 +21,7 @@
 #include "trn/filter/flight_source.hpp"
 #include "trn/filter/localization.hpp"
 #include "trn/filter/nadir_warp.hpp"
+#include "trn/filter/visual_odometry.hpp"
 #include "trn/io/output_folder.hpp"
 #include "trn/registry.hpp"
 #include "trn/sim/air_format.hpp"
@@ -31,6 +33,7 @@ namespace {
 struct LocalizeArgs {
     LocalizeInputOptions inputs;  // dataset, map, resolution, camera, fps
     std::string backend = "fastest", conversion = "logistic:0.2", sampling = "kld", out;
+    std::string odometry;  // folder (SvoX/SvoY columns) | visual (from the frames)
     std::uint64_t seed = 1;
     double rate_hz = 5, sparse = 1;
     double max_tilt_deg = filter::kDefaultMaxTiltDeg;
@@ -142,11 +145,14 @@ void localize(const LocalizeArgs& a) {
                         "give --start X,Y or --start-latlon LAT,LON");
     }
     for (const std::string& w : source.warnings()) std::cerr << "trnkit: warning: " << w << "\n";
+    filter::VisualOdometrySource visual(source, mpp);
+    const bool use_visual = a.odometry == "visual";
     std::cerr << "localizing " << dataset << " (" << rows << " frames, every " << stride << ") on " << backend->info().name << ", "
-              << cfg.conversion.to_string() << ", " << filter::to_string(cfg.sampling) << " sampling, seed " << a.seed << "\n";
+              << cfg.conversion.to_string() << ", " << filter::to_string(cfg.sampling) << " sampling, " << a.odometry << " odometry, seed "
+              << a.seed << "\n";
     filter::LocalizationResult result;
     try {
-        result = filter::run_localization(source, pf, progress_bar, start_x, start_y, a.start_heading_deg * 3.14159265358979323846 / 180);
+        result = filter::run_localization(use_visual ? static_cast<filter::FlightSource&>(visual) : source, pf, progress_bar, start_x, start_y, a.start_heading_deg * 3.14159265358979323846 / 180);
     } catch (const Error& e) {
         if (std::string(e.what()).rfind(dataset, 0) == 0) throw;  // the flight source's own errors name their place
         throw Error(source.position() + ": " + e.what());           // which row of the flight the library choked on
@@ -183,6 +189,7 @@ void localize(const LocalizeArgs& a) {
         std::snprintf(ll, sizeof ll, "lat %.7f lon %.7f", result.rows.back().estimate_lat, result.rows.back().estimate_lon);
         report.after_summary = "final estimate: " + std::string(ll) + " (" + in.georeference + ")\n";
     }
+    record_odometry(a.odometry, use_visual ? &visual : nullptr, report);
     report_localization(result, *backend, cfg, map.image.view(), mpp, report, std::cout);
 }
 
@@ -243,6 +250,8 @@ void add_localize_command(CLI::App& app) {
         ->check(real_in(0, 360));
     cmd->add_flag("--no-plots", a->no_plots, "Skip the gnuplot step");
     cmd->add_flag("--force", a->force, "Write into a non-empty folder that is not an earlier output of localize");
+    add_odometry_option(*cmd, a->odometry, {"folder", "visual"},
+                        "Odometry fed to the filter: folder (metadata.csv's SvoX/SvoY) or visual (computed from the frames)");
     add_filter_model_options(*cmd, a->model);
     cmd->callback([a] { localize(*a); });
 }

@@ -6,11 +6,10 @@
 #include <numbers>
 #include <sstream>
 
-#include <opencv2/calib3d.hpp>
-#include <opencv2/features2d.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "trn/error.hpp"
+#include "trn/filter/visual_odometry.hpp"
 #include "trn/parse_number.hpp"
 
 namespace trn::reg {
@@ -185,33 +184,27 @@ Similarity compose(const Similarity& o, const Similarity& i) {
 }
 
 std::vector<RelativeMotion> relative_motions(const std::vector<GrayImage>& frames, const std::vector<std::string>& names) {
-    auto orb = cv::ORB::create(3000);
-    std::vector<std::vector<cv::KeyPoint>> kps(frames.size());
-    std::vector<cv::Mat> desc(frames.size());
-    for (std::size_t k = 0; k < frames.size(); ++k) orb->detectAndCompute(as_mat(frames[k]), cv::noArray(), kps[k], desc[k]);
-    cv::BFMatcher matcher(cv::NORM_HAMMING, true);
+    // The visual odometry's feature step (trn/filter/visual_odometry.hpp) at full size with more
+    // features and RANSAC effort than the odometry needs: 16 frames, accuracy first.
+    filter::VisualOdometryOptions o;
+    o.max_features = 3000;
+    o.max_width = 16384;
+    o.ransac_iterations = 5000;
+    o.ransac_confidence = 0.999;
+    o.min_inliers = 20;
+    o.phase_correlation = false;
+    filter::VisualOdometry vo(o);
+    vo.track(frames.at(0).view());
     std::vector<RelativeMotion> out;
     for (std::size_t k = 0; k + 1 < frames.size(); ++k) {
-        const std::string pair = names[k] + " -> " + names[k + 1];
-        if (desc[k].empty() || desc[k + 1].empty()) throw Error(pair + ": no features to match");
-        std::vector<cv::DMatch> matches;
-        matcher.match(desc[k + 1], desc[k], matches);
-        std::vector<cv::Point2f> from, to;
-        for (const cv::DMatch& m : matches) {
-            from.push_back(kps[k + 1][m.queryIdx].pt);
-            to.push_back(kps[k][m.trainIdx].pt);
-        }
-        if (from.size() < 10) throw Error(pair + ": only " + std::to_string(from.size()) + " feature matches");
-        std::vector<std::uint8_t> inl;
-        const cv::Mat m = cv::estimateAffinePartial2D(from, to, inl, cv::RANSAC, 2.0, 5000, 0.999);
-        const int n = static_cast<int>(std::count(inl.begin(), inl.end(), 1));
-        if (m.empty() || n < 20) throw Error(pair + ": no consistent motion (" + std::to_string(n) + " RANSAC inliers)");
-        const Similarity fit{m.at<double>(0, 0), m.at<double>(1, 0), m.at<double>(0, 2), m.at<double>(1, 2)};
+        const filter::FrameMotion m = vo.track(frames[k + 1].view());
+        if (!m.ok()) throw Error(names[k] + " -> " + names[k + 1] + ": no consistent motion (" + m.failure + ")");
+        // Rigid about frame k+1's centre: its rotation, and its centre at frame k's centre + (dx, dy).
         const double cx = (frames[k + 1].width - 1) / 2.0, cy = (frames[k + 1].height - 1) / 2.0;
-        const double ca = std::cos(fit.angle()), sa = std::sin(fit.angle());
-        const double mx = fit.a * cx - fit.b * cy + fit.tx, my = fit.b * cx + fit.a * cy + fit.ty;  // centre of k+1 in frame k
+        const double mx = (frames[k].width - 1) / 2.0 + m.dx_px, my = (frames[k].height - 1) / 2.0 + m.dy_px;
+        const double ca = std::cos(m.rotation_rad), sa = std::sin(m.rotation_rad);
         const Similarity rigid{ca, sa, mx - (ca * cx - sa * cy), my - (sa * cx + ca * cy)};
-        out.push_back({rigid, fit.scale(), n});
+        out.push_back({rigid, m.scale, m.inliers});
     }
     return out;
 }

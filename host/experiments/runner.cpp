@@ -21,7 +21,7 @@ namespace trn::experiments {
 namespace fs = std::filesystem;
 
 std::vector<std::string> study_names() { return {"metrics", "heading", "sampling", "conversion", "robustness", "odometry", "odometry-wind",
-                                                       "odometry-long", "template-width"}; }
+                                                       "odometry-visual", "odometry-long", "template-width"}; }
 
 namespace {
 
@@ -33,6 +33,7 @@ std::unique_ptr<Study> make_study(const std::string& name, const std::string& sh
     if (name == "robustness") return make_robustness_study();
     if (name == "odometry") return make_odometry_study(false);
     if (name == "odometry-wind") return make_odometry_study(true);
+    if (name == "odometry-visual") return make_odometry_study(false, true);
     if (name == "odometry-long") return make_long_odometry_study();
     if (name == "template-width") return make_template_width_study();
     std::string names;

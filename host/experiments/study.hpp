@@ -49,7 +49,8 @@ std::unique_ptr<Study> make_heading_study(std::string orthophoto);
 std::unique_ptr<Study> make_sampling_study();
 std::unique_ptr<Study> make_conversion_study();
 std::unique_ptr<Study> make_robustness_study();
-std::unique_ptr<Study> make_odometry_study(bool wind);  // the presets or their '-wind' twins
+// The presets or their '-wind' twins; visual: odometry from the frames (+ Table 3.13).
+std::unique_ptr<Study> make_odometry_study(bool wind, bool visual = false);
 // study_long_flights.cpp: the '-long' presets whole (Table 2.2 lengths); 160 px vs full-resolution templates.
 std::unique_ptr<Study> make_long_odometry_study();
 std::unique_ptr<Study> make_template_width_study();

@@ -2,7 +2,9 @@
 //   conversion [3.5, Tables 3.7-3.12]: scenario presets x conversion functions x map ages x runs,
 //     every cell averaged over the four map years as the dissertation does;
 //   robustness [3.5.3, Table 3.12, Fig 3.7]: the parametric functions alone on the four map years;
-//   odometry   [3.6, Figs 3.8-3.9]: filter vs visual-odometry error, final-error and slope ratios.
+//   odometry   [3.6, Figs 3.8-3.9]: filter vs visual-odometry error, final-error and slope ratios;
+//     odometry-visual: the same with the odometry computed from the frames (visual_odometry.hpp),
+//     also Table 3.13 [3.7] on its four presets (table_3_13.cpp).
 // One job = one flight (preset, conversion, map age, run index). As in the dissertation (3.5.3: the
 // flight imagery is of 2008, the maps of 2008-2014) the frames are rendered from the 2008 world and
 // matched against the map of 2008 + map age, i.e. a map 0-6 years NEWER than the frames.
@@ -19,6 +21,8 @@
 #include "trn/filter/localization.hpp"
 #include "trn/filter/report.hpp"
 #include "trn/filter/scorer.hpp"
+#include "trn/filter/visual_odometry.hpp"
+#include "table_3_13.hpp"
 #include "world.hpp"
 
 namespace trn::experiments {
@@ -47,8 +51,9 @@ Json flight_config(bool quick) {
 }
 
 // One localization flight; writes the per-step CSV (and plots when asked) into the job folder.
+// visual_odometry: the filter's odometry (and the baseline) is computed from the rendered frames.
 Json fly(const Json& c, const std::string& preset_name, const std::string& conversion, int map_age, int run, JobContext& ctx,
-         bool plots) {
+         bool plots, bool visual_odometry = false) {
     sim::Scenario preset = sim::find_scenario(preset_name);
     preset.nominal_size_m = c.at("nominal_size_m");
     const double footprint = preset.max_altitude_m() / sim::Camera{}.focal_px() * 400 * 2;  // a '-wind' preset climbs
@@ -61,7 +66,9 @@ Json fly(const Json& c, const std::string& preset_name, const std::string& conve
     fc.seed = mix_seed(ctx.seed, 100 + run);
     fc.frames = static_cast<std::size_t>(std::llround(c.at("distance_m").get<double>() / preset.speed_mps * preset.fps));
     const std::size_t stride = std::max<std::size_t>(1, std::lround(preset.fps / c.at("rate_hz").get<double>()));
-    filter::SimulatedFlightSource source(*world, fc, stride);
+    filter::SimulatedFlightSource simulated(*world, fc, stride);
+    filter::VisualOdometrySource visual(simulated, world->metres_per_pixel);
+    filter::FlightSource& source = visual_odometry ? static_cast<filter::FlightSource&>(visual) : simulated;
     filter::BackendScorerOptions so;
     so.template_width = c.at("template_width");
     filter::BackendScorer scorer(ctx.backend, map->image.view(), so);
@@ -77,7 +84,7 @@ Json fly(const Json& c, const std::string& preset_name, const std::string& conve
     filter::write_rows_csv(ctx.job_folder + "/localization.csv", r.rows);
     if (plots) filter::plot_run(ctx.job_folder, r.rows, s, map->image.view(), map->metres_per_pixel, preset_name + " " + conversion);
     auto num = [](double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); };
-    return {{"filter_mean_error_m", num(s.filter_mean_error_m)},
+    Json result = {{"filter_mean_error_m", num(s.filter_mean_error_m)},
             {"odometry_mean_error_m", num(s.odometry_mean_error_m)},
             {"filter_final_error_m", num(s.filter_final_error_m)},
             {"odometry_final_error_m", num(s.odometry_final_error_m)},
@@ -91,6 +98,9 @@ Json fly(const Json& c, const std::string& preset_name, const std::string& conve
             {"lock_lost_events", s.counters.lock_lost_events},
             {"weak_contrast_steps", s.counters.weak_contrast_steps},
             {"odometry_inconsistent_steps", s.counters.odometry_inconsistent_steps}};
+    if (visual_odometry)
+        result["visual_odometry_steps"] = {{"features", visual.counts().features}, {"phase", visual.counts().phase}, {"lost", visual.counts().lost}};
+    return result;
 }
 
 std::vector<std::string> strings(const Json& j) { return j.get<std::vector<std::string>>(); }
@@ -332,11 +342,12 @@ public:
 };
 
 // `odometry` flies the twelve presets as published; `odometry-wind` their '-wind' twins (crab,
-// climbs, barometer, drifting odometry: sim/scenario.hpp), where the odometry is worse.
+// climbs, barometer, drifting odometry: sim/scenario.hpp), where the odometry is worse;
+// `odometry-visual` the twelve presets with the odometry computed from the frames (issue 17).
 class OdometryStudy : public Study {
 public:
-    explicit OdometryStudy(bool wind) : wind_(wind) {}
-    std::string name() const override { return wind_ ? "odometry-wind" : "odometry"; }
+    OdometryStudy(bool wind, bool visual) : wind_(wind), visual_(visual) {}
+    std::string name() const override { return visual_ ? "odometry-visual" : wind_ ? "odometry-wind" : "odometry"; }
     Json config(bool quick) const override {
         Json c = flight_config(quick);
         std::vector<std::string> presets = quick ? std::vector<std::string>{"FR-200"} : kAllPresets;
@@ -346,6 +357,7 @@ public:
         c["conversion"] = "logistic:0.2";
         c["map_age"] = 2;
         c["runs"] = quick ? 1 : 3;
+        if (visual_) c["odometry"] = "visual: ORB + RANSAC similarity frame to frame at the filter rate, phase-correlation fallback";
         return c;
     }
     std::vector<Json> jobs(const Json& c) const override {
@@ -355,11 +367,13 @@ public:
         return out;
     }
     Json run_job(const Json& c, const Json& p, JobContext& ctx) const override {
-        return fly(c, p.at("preset"), c.at("conversion"), c.at("map_age"), p.at("run"), ctx, ctx.plots && p.at("run") == 0);
+        return fly(c, p.at("preset"), c.at("conversion"), c.at("map_age"), p.at("run"), ctx, ctx.plots && p.at("run") == 0, visual_);
     }
     std::string merge(const std::vector<Json>& o, const MergeContext& mc) const override {
         Table t;
-        t.title = "Figs 3.8-3.9: DPC-PFL (logistic:0.2) vs visual odometry; ratios = odometry / filter (diss.: final error 2x, slope 11x)";
+        t.title = std::string("Figs 3.8-3.9: DPC-PFL (logistic:0.2) vs ") +
+                  (visual_ ? "our image-based visual odometry (which also feeds the filter)" : "visual odometry (simulated drift)") +
+                  "; ratios = odometry / filter (diss.: final error 2x, slope 11x)";
         t.header = {"Flight", "Distance km", "Final error filter m", "Final error odometry m", "Final ratio (ours)", "(diss.)",
                     "Slope filter m/km", "Slope odometry m/km", "Slope ratio (ours)", "(diss.)",
                     "Mean error filter m", "Mean error odometry m", "Lock lost events"};
@@ -379,18 +393,19 @@ public:
         t.rows.push_back({"Mean", "", "", "", fmt(final_ratio / n), "2", "", "", fmt(slope_ratio / n), "11", "", "", ""});
         t.write(mc.out, "table_odometry");
         std::string md = t.markdown();
+        if (visual_) md += "\n" + table_3_13([&](const std::string& p, const char* key) { return mean_of(o, key, FlightCell{p, ""}); }, mc.out);
         if (mc.plots) md += "\nPer-flight plots (trajectory.png, error.png) of run 0 are in " + mc.out + "/jobs/<flight>/\n";
         return md;
     }
 
 private:
-    bool wind_;
+    bool wind_, visual_;
 };
 
 }  // namespace
 
 std::unique_ptr<Study> make_conversion_study() { return std::make_unique<ConversionStudy>(); }
 std::unique_ptr<Study> make_robustness_study() { return std::make_unique<RobustnessStudy>(); }
-std::unique_ptr<Study> make_odometry_study(bool wind) { return std::make_unique<OdometryStudy>(wind); }
+std::unique_ptr<Study> make_odometry_study(bool wind, bool visual) { return std::make_unique<OdometryStudy>(wind, visual); }
 
 }  // namespace trn::experiments

@@ -109,6 +109,7 @@ bool AirFlightSource::next(FlightSample& s) {
         s.truth_x = r.map_x, s.truth_y = r.map_y;
         s.truth_yaw = sim::heading_from_quaternion(r.orientation);
         s.odometry_east_m = r.svo_m.x, s.odometry_north_m = r.svo_m.y;
+        s.odometry_source = "folder";
         s.heading_rad = sim::heading_from_quaternion(r.imu);
         s.map_px_per_camera_px = sim::template_scale(camera_, r.relative_altitude_m, mpp_);
         s.image = {};
@@ -175,6 +176,7 @@ bool SimulatedFlightSource::next(FlightSample& s) {
         s.has_truth = true;
         s.truth_x = f.truth.map_x, s.truth_y = f.truth.map_y, s.truth_yaw = f.truth.yaw_rad;
         s.odometry_east_m = f.odometry_m.x, s.odometry_north_m = f.odometry_m.y;
+        s.odometry_source = "simulated";
         s.heading_rad = f.magnetometer_heading_rad;
         s.map_px_per_camera_px = sim::measured_template_scale(f, config_.camera, world_.metres_per_pixel);  // barometric, like a real flight
         sim::RenderOptions r = config_.render;

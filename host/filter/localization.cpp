@@ -125,6 +125,7 @@ LocalizationResult run_localization(FlightSource& source, ParticleFilter& filter
         row.score_ms = rep.score_ms, row.step_ms = step_s * 1000;
         row.odometry_lost = rep.odometry_lost, row.frame_missing = rep.frame_missing && !s.too_oblique, row.reinitialised = rep.reinitialised;
         row.tilt_deg = s.tilt_deg, row.too_oblique = s.too_oblique;
+        row.odometry_source = s.odometry_source;
         row.lock = rep.lock;
         result.rows.push_back(row);
         if (progress) progress(result.rows.size(), hint);

@@ -54,7 +54,7 @@ void write_rows_csv(const std::string& path, const std::vector<LocalizationRow>&
     out.precision(10);
     out << "frame,time_s,distance_m,truth_x,truth_y,odometry_x,odometry_y,estimate_x,estimate_y,estimate_yaw,best_x,best_y,"
            "error_m,odometry_error_m,particles,off_map,score_ms,step_ms,odometry_lost,frame_missing,reinitialised,tilt_deg,too_oblique,"
-           "est_lat,est_lon,lock_state,lock_contrast,lock_drift_m,lock_drift_bound_m,lock_lost_events,lock_widen_radius_m\n";
+           "est_lat,est_lon,lock_state,lock_contrast,lock_drift_m,lock_drift_bound_m,lock_lost_events,lock_widen_radius_m,odometry_source\n";
     std::size_t lost_events = 0;  // running count, so a plot or a grep sees when each loss happened
     for (const LocalizationRow& r : rows) {
         lost_events += r.lock.lost;
@@ -64,7 +64,7 @@ void write_rows_csv(const std::string& path, const std::vector<LocalizationRow>&
             << r.step_ms << ',' << r.odometry_lost << ',' << r.frame_missing << ',' << r.reinitialised << ',' << r.tilt_deg << ','
             << r.too_oblique << ',' << LatLonCell{r.estimate_lat} << ',' << LatLonCell{r.estimate_lon} << ',' << lock_state(r.lock) << ','
             << Cell{r.lock.contrast} << ',' << Cell{r.lock.drift_m} << ',' << Cell{r.lock.drift_bound_m} << ',' << lost_events << ','
-            << (r.lock.lost ? r.lock.widen_radius_m : 0.0) << '\n';
+            << (r.lock.lost ? r.lock.widen_radius_m : 0.0) << ',' << r.odometry_source << '\n';
     }
     file.commit();
 }

@@ -27,6 +27,7 @@ struct FlightSample {
     bool too_oblique = false;                            // tilt beyond the limit: not loaded, not scored
     GrayImage image;                                     // empty when it failed to load or is too oblique
     std::string image_error;                             // why it is empty
+    std::string odometry_source;                         // "simulated", "folder", "visual:..." (visual_odometry.hpp)
 };
 
 class FlightSource {

@@ -30,6 +30,7 @@ struct LocalizationRow {
     double tilt_deg = 0;                             // of the camera from nadir (measured roll/pitch)
     bool too_oblique = false;                        // tilted beyond the limit: not scored (not frame_missing)
     double estimate_lat = NAN, estimate_lon = NAN;   // degrees, when the map is georeferenced (filled by the caller)
+    std::string odometry_source;                     // the sample's: "simulated", "folder", "visual:features" ...
 };
 
 struct LocalizationSummary {
