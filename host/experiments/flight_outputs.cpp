@@ -11,7 +11,7 @@ double mean_of(const std::vector<Json>& outputs, const char* key, const FlightCe
     int n = 0;
     for (const Json& o : outputs) {
         const Json& p = o.at("params");
-        const int age = p.at("map_age");
+        const int age = p.value("map_age", 0);  // odometry jobs fly one map and store no age
         if ((!cell.preset.empty() && p.at("preset") != cell.preset) || (!cell.conversion.empty() && p.at("conversion") != cell.conversion) ||
             age < cell.min_age || age > cell.max_age)
             continue;

@@ -12,7 +12,8 @@ namespace trn::experiments {
 // A number from a job's result; NaN where the job stored null (a non-finite value).
 double get(const Json& result, const char* key);
 
-// Which jobs a mean is taken over: "" matches any preset / conversion; map ages in [min_age, max_age].
+// Which jobs a mean is taken over: "" matches any preset / conversion; map ages in [min_age, max_age]
+// (a job without map_age, e.g. odometry's, counts as age 0).
 struct FlightCell {
     std::string preset, conversion;
     int min_age = 0, max_age = INT_MAX;
