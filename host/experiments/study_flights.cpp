@@ -15,6 +15,7 @@
 
 #include "dissertation_tables.hpp"
 #include "flight_outputs.hpp"
+#include "flight_settings.hpp"
 #include "study.hpp"
 #include "table.hpp"
 #include "trn/filter/flight_source.hpp"
@@ -44,9 +45,7 @@ Json flight_config(bool quick) {
             {"flight_year", kFlightYear},
             // The filter's defaults are part of the configuration: job files made before the
             // displacement-vector motion model and the lock monitor (issue 12) are refused, not mixed.
-            {"filter", "defaults: KLD (eps 0.05, q 0.9, 5 m bins, 100..2000), motion along the odometry's "
-                       "displacement vector (alpha 0.05/0.03/0.2, eps 1 m/2 deg), lock monitor on (48 probes, contrast 3/5.5, "
-                       "fix +5.5 per drift bound from dead reckoning, held 3 steps)"},
+            {"filter", kFilterDefaults},
             {"init_radius_m", filter::FilterConfig{}.init_radius_m}};  // trnkit experiment --init-radius-m
 }
 

@@ -11,6 +11,8 @@
 #include <cmath>
 #include <filesystem>
 
+#include "flight_outputs.hpp"
+#include "flight_settings.hpp"
 #include "study.hpp"
 #include "table.hpp"
 #include "trn/filter/flight_source.hpp"
@@ -24,12 +26,14 @@ namespace {
 
 constexpr int kFlightYear = 2008;
 
-// The settings both studies share; "filter" names the filter's defaults so that job files of an
-// older filter are refused, not mixed (as in study_flights.cpp).
+// The settings both studies share (the filter named as in study_flights.cpp: flight_settings.hpp).
 Json shared_config() {
-    return {{"rate_hz", 2}, {"flight_year", kFlightYear}, {"map_age", 2}, {"conversion", "logistic:0.2"},
-            {"filter", "defaults: KLD (eps 0.05, q 0.9, 5 m bins, 100..2000), 300 m init radius, motion along the odometry's "
-                       "displacement vector (alpha 0.05/0.03/0.2, eps 1 m/2 deg), lock monitor on (48 probes, contrast 3/5.5)"}};
+    return {{"rate_hz", 2},
+            {"flight_year", kFlightYear},
+            {"map_age", 2},
+            {"conversion", "logistic:0.2"},
+            {"filter", kFilterDefaults},
+            {"init_radius_m", filter::FilterConfig{}.init_radius_m}};  // trnkit experiment --init-radius-m
 }
 
 std::string width_name(int w) { return w == 0 ? "full" : std::to_string(w); }
@@ -65,6 +69,7 @@ Json fly(const Json& c, const std::string& preset_name, double distance_m, int t
     filter::FilterConfig cfg;
     cfg.metres_per_pixel = map->metres_per_pixel;
     cfg.conversion = filter::Conversion::parse(c.at("conversion").get<std::string>());
+    cfg.init_radius_m = c.at("init_radius_m");
     cfg.seed = mix_seed(ctx.seed, 200 + run);
     filter::ParticleFilter pf(scorer, cfg);
     const filter::LocalizationResult r = filter::run_localization(source, pf);
@@ -90,8 +95,6 @@ Json fly(const Json& c, const std::string& preset_name, double distance_m, int t
             {"score_ms_per_step", num(s.mean_score_ms)},
             {"lock_lost_events", s.counters.lock_lost_events}};
 }
-
-double get(const Json& j, const char* key) { return j.at(key).is_null() ? NAN : j.at(key).get<double>(); }
 
 std::vector<std::string> strings(const Json& j) { return j.get<std::vector<std::string>>(); }
 
