@@ -117,12 +117,7 @@ public:
         c["runs"] = 1;
         return c;
     }
-    std::vector<Json> jobs(const Json& c) const override {
-        std::vector<Json> out;
-        for (const auto& p : strings(c.at("presets")))
-            for (int r = 0; r < c.at("runs").get<int>(); ++r) out.push_back({{"id", p + "-" + std::to_string(r)}, {"preset", p}, {"run", r}});
-        return out;
-    }
+    std::vector<Json> jobs(const Json& c) const override { return preset_run_jobs(c); }
     Json run_job(const Json& c, const Json& p, JobContext& ctx) const override {
         return fly(c, p.at("preset"), c.at("distance_m"), c.at("template_width"), p.at("run"), ctx);
     }
