@@ -1,8 +1,9 @@
 #include "trn/io/image_io.hpp"
 
 #include <filesystem>
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
+#include <opencv2/core.hpp>
+
+#include "image_codec.hpp"
 
 #include "trn/error.hpp"
 #include "trn/io/atomic_file.hpp"
@@ -18,16 +19,8 @@ GrayImage load_gray(const std::string& path) {
     const std::string what = path + ": image";
     if (const auto size = read_image_size(path))
         limits::check_image(what, size->width, size->height, limits::kMaxMapPixels, limits::kLoadBytesPerPixel);
-    cv::Mat m;
-    try {
-        m = cv::imread(path, cv::IMREAD_GRAYSCALE);
-    } catch (const cv::Exception& e) {
-        throw Error(path + ": cannot decode image (" + e.msg + ")");
-    }
-    if (m.empty()) throw Error(path + ": not a readable image (corrupt or unsupported format)");
-    limits::check_image(what, m.cols, m.rows, limits::kMaxMapPixels, limits::kLoadBytesPerPixel);
-    GrayImage img{m.cols, m.rows, std::vector<std::uint8_t>(std::size_t(m.cols) * m.rows)};
-    for (int y = 0; y < m.rows; ++y) std::copy_n(m.ptr<std::uint8_t>(y), m.cols, img.pixels.data() + std::size_t(y) * m.cols);
+    GrayImage img = io::detail::decode_gray(path);
+    limits::check_image(what, img.width, img.height, limits::kMaxMapPixels, limits::kLoadBytesPerPixel);
     return img;
 }
 
@@ -36,15 +29,7 @@ GrayImage load_gray(const std::string& path) {
 void save_gray(const std::string& path, GrayView image) {
     const std::string ext = std::filesystem::path(path).extension().string();
     if (ext.empty()) throw Error(path + ": no image extension (.png, .jpg, .tif, ...)");
-    const cv::Mat m(image.height, image.width, CV_8UC1, const_cast<std::uint8_t*>(image.data), image.stride);
-    std::vector<uchar> bytes;
-    bool ok = false;
-    try {
-        ok = cv::imencode(ext, m, bytes);
-    } catch (const cv::Exception& e) {
-        throw Error(path + ": cannot encode image (" + e.msg + ")");
-    }
-    if (!ok) throw Error(path + ": cannot encode image as " + ext);
+    const std::vector<std::uint8_t> bytes = io::detail::encode_gray(path, ext, image);
     io::write_file_atomic(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 

@@ -9,11 +9,10 @@
 #include <numbers>
 #include <random>
 
-#include <opencv2/imgcodecs.hpp>
-
 #include "../common/test_images.hpp"
 #include "cases.hpp"
 #include "checks.hpp"
+#include "trn/io/image_io.hpp"
 
 namespace trn::conformance {
 namespace {
@@ -205,13 +204,11 @@ void real_orthophoto(Backend& dut, Backend& ref) {
     const std::string map_path = base + "/orthophoto.png", frame_path = base + "/realflight/frame_00000.png";
     if (!dir || !std::filesystem::exists(map_path) || !std::filesystem::exists(frame_path))
         GTEST_SKIP() << "shared data not found (TRN_SHARED_DATA='" << base << "'): real orthophoto case not run";
-    const cv::Mat map = cv::imread(map_path, cv::IMREAD_GRAYSCALE), frame = cv::imread(frame_path, cv::IMREAD_GRAYSCALE);
-    ASSERT_FALSE(map.empty());
-    ASSERT_FALSE(frame.empty());
+    // Read as every trnkit command reads images (the device kit's build: libpng, no imgcodecs).
+    const GrayImage map = load_gray(map_path), frame = load_gray(frame_path);
     std::mt19937 rng(59);
-    const auto poses = random_poses(rng, 200, map.cols, map.rows, 0.0f, 0.8f, 1.6f);
-    score_and_compare(dut, ref, GrayView{map.data, map.cols, map.rows, static_cast<std::ptrdiff_t>(map.step)},
-                      GrayView{frame.data, frame.cols, frame.rows, static_cast<std::ptrdiff_t>(frame.step)}, poses, {});
+    const auto poses = random_poses(rng, 200, map.width, map.height, 0.0f, 0.8f, 1.6f);
+    score_and_compare(dut, ref, map.view(), frame.view(), poses, {});
 }
 
 }  // namespace
