@@ -11,6 +11,8 @@ namespace trn::bench {
 struct DeviceEntry {
     std::string name;    // registry name: "cpu-ref", "cpu", "opencl:0", ...
     std::string family;  // "cpu-ref", "cpu", "opencl", "vulkan"
+    std::string type;    // "cpu", "gpu", "other" (DeviceInfo::type)
+    std::string device;  // e.g. "NVIDIA H200"
 };
 
 // Every device the registry lists in this build, in registry order.

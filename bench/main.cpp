@@ -67,6 +67,11 @@ int main(int argc, char** argv) {
         // The command that produced this run (scripts/bench-report passes its own command line).
         if (const char* cmd = std::getenv("TRN_BENCH_COMMAND"); cmd && *cmd) benchmark::AddCustomContext("trn_command", cmd);
         benchmark::AddCustomContext("trn_devices", devices);
+        // Which devices are GPUs (the report's GPU targets apply to those only), and what they are.
+        std::string described;
+        for (const DeviceEntry& d : bench_devices())
+            described += (described.empty() ? "" : "; ") + d.name + "=" + d.type + "=" + d.device;
+        benchmark::AddCustomContext("trn_device_types", described);
         benchmark::AddCustomContext("trn_map", bench_map().source);
         // OpenMP's wait policy decides whether the cpu backend survives a loaded machine.
         const char* omp_threads = std::getenv("OMP_NUM_THREADS");
@@ -80,6 +85,7 @@ int main(int argc, char** argv) {
         benchmark::AddCustomContext("trn_opencv", std::string(CV_VERSION) + ", " + opencv_opencl_description());
         register_setup_benchmarks(sweep);  // first, so "first" is the process's first backend creation
         register_stream_benchmarks(sweep);
+        register_device_copy_benchmarks(sweep);
         register_sobel_benchmarks(sweep);
         register_ncc_benchmarks(sweep);
         const std::size_t ran = benchmark::RunSpecifiedBenchmarks();

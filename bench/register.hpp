@@ -9,6 +9,7 @@ namespace trn::bench {
 void register_sobel_benchmarks(const Sweep& sweep);
 void register_ncc_benchmarks(const Sweep& sweep);
 void register_stream_benchmarks(const Sweep& sweep);
+void register_device_copy_benchmarks(const Sweep& sweep);
 void register_setup_benchmarks(const Sweep& sweep);
 
 // Whether OpenCV's OpenCL path (cv::UMat) is really on, and on what: for benchmark names

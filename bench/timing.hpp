@@ -51,6 +51,8 @@ public:
         state_.counters[unit] = items_per_iter * iters / seconds_ / unit_scale;
         if (bytes_per_iter > 0) state_.counters["GB/s"] = bytes_per_iter * iters / seconds_ / 1e9;
         if (samples_per_iter > 0) state_.counters["Msamples/s"] = samples_per_iter * iters / seconds_ / 1e6;
+        // The kernel's own memory rate (device phases only), set beside the device's copy bandwidth.
+        if (bytes_per_iter > 0 && execute_ms_ > 0) state_.counters["exec_GB/s"] = bytes_per_iter * iters / (execute_ms_ / 1e3) / 1e9;
         state_.counters["write_ms"] = upload_ms_ / iters;
         state_.counters["exec_ms"] = execute_ms_ / iters;
         state_.counters["read_ms"] = download_ms_ / iters;

@@ -11,6 +11,7 @@
 #include <optional>
 #include <vector>
 
+#include "../common/copy_bandwidth.hpp"
 #include "../common/ncc_work_shape.hpp"
 #include "../common/sobel_work_shape.hpp"
 #include "../common/pow2.hpp"
@@ -114,7 +115,7 @@ NccDeviceLimits ncc_device_limits(cl_device_id device, std::size_t lanes) {
     return limits;
 }
 
-class OpenClBackend final : public Backend {
+class OpenClBackend final : public Backend, public CopyBandwidthProbe {
 public:
     OpenClBackend(const DeviceRef& device, int index, const BackendOptions::OpenCl& options)
         : device_(device), info_(describe_device(device, index)) {
@@ -185,6 +186,30 @@ protected:
     void do_score(const MapStorage& storage, const ScoringPlan& plan, std::span<const Pose> poses,
                   std::span<ParticleScore> out, PhaseTimes* times) override;
     void do_sobel(GrayView src, Int16View gx, Int16View gy, PhaseTimes* times) override;
+
+    // Device-to-device clEnqueueCopyBuffer between two buffers of `bytes`, each copy timed by its
+    // profiling event; one untimed copy first (first-touch, clocks ramping up).
+    CopyBandwidth probe_copy_bandwidth(std::size_t bytes, int repetitions) override {
+        if (bytes > max_alloc_)
+            throw Error("measure_copy_bandwidth: " + std::to_string(bytes >> 20) + " MiB is more than the largest buffer of " +
+                        info_.name + " (" + std::to_string(max_alloc_ >> 20) + " MiB, CL_DEVICE_MAX_MEM_ALLOC_SIZE)");
+        cl_int err = CL_SUCCESS;
+        MemHandle src(clCreateBuffer(context_.get(), CL_MEM_READ_WRITE, bytes, nullptr, &err));
+        check(err, "clCreateBuffer(copy source) on " + info_.name);
+        MemHandle dst(clCreateBuffer(context_.get(), CL_MEM_READ_WRITE, bytes, nullptr, &err));
+        check(err, "clCreateBuffer(copy destination) on " + info_.name);
+        const cl_uchar zero = 0;
+        check(clEnqueueFillBuffer(queue_.get(), src.get(), &zero, 1, 0, bytes, 0, nullptr, nullptr), "clEnqueueFillBuffer(copy source)");
+        std::vector<double> seconds;
+        for (int i = 0; i <= repetitions; ++i) {
+            cl_event e = nullptr;
+            check(clEnqueueCopyBuffer(queue_.get(), src.get(), dst.get(), 0, 0, bytes, 0, nullptr, &e), "clEnqueueCopyBuffer");
+            EventHandle copy(e);
+            check(clWaitForEvents(1, &e), "clWaitForEvents(copy)");
+            if (i > 0) seconds.push_back(event_ms(copy.get()) * 1e-3);
+        }
+        return copy_bandwidth_from(bytes, std::move(seconds), "clEnqueueCopyBuffer, profiling events");
+    }
 
 private:
     // Uploads the plan's quantized template (and sparse offsets) unless the device already holds

@@ -5,6 +5,7 @@
 #include <memory>
 #include <vector>
 
+#include "../common/copy_bandwidth.hpp"
 #include "../common/sobel_work_shape.hpp"
 #include "trn/backend.hpp"
 #include "trn/backend_options.hpp"
@@ -47,7 +48,7 @@ public:
     bool quads = false;
 };
 
-class VulkanBackend final : public Backend {
+class VulkanBackend final : public Backend, public CopyBandwidthProbe {
 public:
     VulkanBackend(int index, const BackendOptions::Vulkan& options);
     ~VulkanBackend() override;
@@ -60,6 +61,9 @@ protected:
     void do_score(const MapStorage& map, const ScoringPlan& plan, std::span<const Pose> poses,
                   std::span<ParticleScore> out, PhaseTimes* times) override;
     void do_sobel(GrayView src, Int16View gx, Int16View gy, PhaseTimes* times) override;
+
+public:
+    CopyBandwidth probe_copy_bandwidth(std::size_t bytes, int repetitions) override;  // vulkan_copy.cpp
 
 private:
     // Barriers around the transfers of the staging path (no-ops on unified memory).
