@@ -20,7 +20,7 @@ std::vector<DeviceRef> enumerate_devices(std::string& why_none) {
     const cl_int err = clGetPlatformIDs(0, nullptr, &platform_count);
     if (err != CL_SUCCESS || platform_count == 0) {
         why_none = err == CL_SUCCESS || err == -1001
-                       ? "no OpenCL platform is installed (the ICD loader found no drivers in /etc/OpenCL/vendors)"
+                       ? "no ICD: the OpenCL ICD loader found no driver (no *.icd file in /etc/OpenCL/vendors or in the folder OCL_ICD_VENDORS names)"
                        : std::string("clGetPlatformIDs failed: ") + error_name(err) + " (" + std::to_string(err) + ")";
         return {};
     }

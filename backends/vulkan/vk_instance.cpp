@@ -93,7 +93,7 @@ Instance::Instance(bool validation) {
     if (validation) info.pNext = &messenger_info;  // also reports on vkCreateInstance / vkDestroyInstance
     const VkResult r = l.vkCreateInstance(&info, nullptr, &instance_);
     if (r == VK_ERROR_INCOMPATIBLE_DRIVER)
-        throw BackendUnavailable("no Vulkan driver (ICD) found by the loader; install mesa-vulkan-drivers (lavapipe) or a GPU driver");
+        throw BackendUnavailable("no ICD: the Vulkan loader found no driver (no ICD JSON in its search folders or in VK_DRIVER_FILES); install mesa-vulkan-drivers (lavapipe) or a GPU driver");
     if (r == VK_ERROR_EXTENSION_NOT_PRESENT && validation)
         throw Error("vulkan: TRN_VULKAN_VALIDATION=1 but VK_EXT_debug_utils is not available");
     check(r, "vkCreateInstance");

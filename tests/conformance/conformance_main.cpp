@@ -1,4 +1,4 @@
-// trn_conformance --backend FAMILY[:DEVICE] [--require] [gtest flags]
+// trn_conformance --backend FAMILY[:DEVICE] [--require] [gtest flags]   (FAMILY cpu-ref: the oracle vs OpenCV)
 // Registers every case for every selected device and every variant of its family (code paths
 // chosen through BackendOptions: the cpu backend's portable loop, Vulkan's fallback paths) and runs
 // them against cpu-ref. A family with no device is reported "NOT AVAILABLE" by name and exits 77
@@ -88,9 +88,17 @@ int main(int argc, char** argv) {
     }
     const std::string family = spec.substr(0, spec.find(':'));
     if (family == "cpu-ref") {
-        std::cerr << "cpu-ref is the oracle every backend is compared with; it is checked against OpenCV and "
-                     "closed-form cases by trn_unit_tests\n";
-        return 2;
+        // The oracle every backend is compared with is itself checked against independent code
+        // (OpenCV's warpAffine + matchTemplate, closed-form cases: test_cpu_ref_oracle.cpp, also
+        // in trn_unit_tests), so a machine with only this binary (the device kit) checks it too.
+        int gargc = static_cast<int>(rest.size());
+        testing::InitGoogleTest(&gargc, rest.data());
+        if (GTEST_FLAG_GET(filter) == "*") GTEST_FLAG_SET(filter, "CpuRefOracle.*");
+        const int rc = RUN_ALL_TESTS();
+        const auto* unit = testing::UnitTest::GetInstance();
+        std::cout << "CONFORMANCE cpu-ref (oracle vs OpenCV): " << unit->successful_test_count() << " passed, "
+                  << unit->failed_test_count() << " failed, " << unit->skipped_test_count() << " skipped\n";
+        return rc;
     }
 
     const trn::BackendRegistry& registry = trn::default_registry();
@@ -114,6 +122,7 @@ int main(int argc, char** argv) {
 
     const trn::BackendOptions base = trn::cli::backend_options_from_environment();
     std::shared_ptr<trn::Backend> ref = registry.create("cpu-ref");
+    std::vector<std::shared_ptr<trn::Backend>> owned;
     for (const trn::DeviceInfo& d : devices)
         for (const Variant& v : variants(family, base)) {
             const std::string suite = test_suite_name(d.name) + v.name, label = d.name + v.name;
@@ -129,13 +138,21 @@ int main(int argc, char** argv) {
             }
             std::cout << "CONFORMANCE " << label << ": " << d.device << " [" << d.type << "] (" << d.driver << "), "
                       << cases.size() << " cases against cpu-ref; " << dut->info().details << "\n";
+            // The registered factories live as long as gtest's UnitTest, a static that (with the
+            // oracle's TEST()s in this binary) outlives libraries loaded later, such as a Vulkan
+            // layer: they hold non-owning pointers, and main releases the backends before it returns.
+            owned.push_back(dut);
+            const std::shared_ptr<trn::Backend> dut_view(std::shared_ptr<void>{}, dut.get()), ref_view(std::shared_ptr<void>{}, ref.get());
             for (const auto& c : cases)
                 testing::RegisterTest(suite.c_str(), c.name.c_str(), nullptr, label.c_str(), __FILE__, __LINE__,
-                                      [dut, ref, &c]() -> testing::Test* { return new CaseTest(dut, ref, &c); });
+                                      [dut_view, ref_view, &c]() -> testing::Test* { return new CaseTest(dut_view, ref_view, &c); });
         }
     int gargc = static_cast<int>(rest.size());
     testing::InitGoogleTest(&gargc, rest.data());
+    if (GTEST_FLAG_GET(filter) == "*") GTEST_FLAG_SET(filter, "-CpuRefOracle.*");  // cpu-ref's own run has them
     const int rc = RUN_ALL_TESTS();
+    owned.clear();
+    ref.reset();
     const auto* unit = testing::UnitTest::GetInstance();
     std::cout << "CONFORMANCE " << spec << ": " << unit->successful_test_count() << " passed, " << unit->failed_test_count()
               << " failed, " << unit->skipped_test_count() << " skipped\n";
