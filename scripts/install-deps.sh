@@ -22,6 +22,9 @@ packages=(
   # running the studies on a cluster engine (scripts/experiment-*; tests/cluster starts a throwaway
   # single-node Slurm) and checking the scripts
   parallel slurmctld slurmd slurm-client munge shellcheck
+  # the device kit (scripts/device-kit): PNG without OpenCV's imgcodecs, RUNPATH rewriting, the bare
+  # Debian root its test runs in, and the libraries NVIDIA's Vulkan ICD needs that a GPU image may lack
+  libpng-dev patchelf debootstrap libglvnd0 libx11-6 libxext6
 )
 
 missing=()
