@@ -2,6 +2,9 @@
 // rendered from the world two years after the localization map was taken, localizes it with the
 // DPC-PFL particle filter on the fastest available backend, and prints the summary and the paths
 // of the summary JSON and the plots. (The cross-backend scoring table is `trnkit check`.)
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -54,6 +57,14 @@ void demo(const DemoArgs& a) {
     const std::string out = a.out.empty() ? (fs::temp_directory_path() / "trnkit-demo").string() : a.out;
     // The default folder is demo's by definition (older trnkit versions wrote it without a marker).
     const bool force = a.force || a.out.empty();
+    if (a.out.empty()) {
+        // The default lies in a shared temporary folder: one that is a link, or another user's, was
+        // made by someone else.
+        struct stat st {};
+        if (::lstat(out.c_str(), &st) == 0 && (S_ISLNK(st.st_mode) || st.st_uid != ::geteuid()))
+            throw Error(out + ": " + (S_ISLNK(st.st_mode) ? "is a symbolic link" : "belongs to another user") +
+                        ", so it is not an earlier demo output of yours; give --out DIR");
+    }
     io::check_output_folder(out, "demo", force);  // before the maps and the flight, not after
 
     // The localization map (a.map_year) and the world the camera sees (a.flight_year), same place.

@@ -118,7 +118,7 @@ void add_energy_bench_command(CLI::App* energy) {
                      sampler->describe().c_str(), a->period_ms);
         const energy::BenchResult res = energy::run_energy_bench(*sampler, targets, cfg);
 
-        io::open_output_folder(a->out, "energy bench", a->force);
+        io::open_output_folder(a->out, "energy bench", a->force, "--out", io::Rerun::ReplacesPrevious);
         const std::string dir = a->out + "/";
         write_text_file(dir + "power.log", energy::format_trnkit_power(res.trace));
         for (const auto& r : res.rows) {

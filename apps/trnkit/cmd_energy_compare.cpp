@@ -42,7 +42,7 @@ void add_energy_compare_command(CLI::App* energy) {
         o.bootstrap_resamples = a->bootstrap;
         io::check_output_folder(a->out, "energy compare", a->force);
         const auto cmp = energy::compare_files(a->runs, o);
-        io::open_output_folder(a->out, "energy compare", a->force);
+        io::open_output_folder(a->out, "energy compare", a->force, "--out", io::Rerun::ReplacesPrevious);
         write_text_file(a->out + "/tables.md", energy::tables_markdown(cmp));
         write_text_file(a->out + "/table1_energy.csv", energy::energy_table_csv(cmp));
         write_text_file(a->out + "/table2_shapiro_wilk.csv", energy::shapiro_table_csv(cmp));

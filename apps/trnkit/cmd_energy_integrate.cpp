@@ -11,6 +11,7 @@
 #include "trn/energy/run_report.hpp"
 #include "trn/error.hpp"
 #include "trn/io/atomic_file.hpp"
+#include <utility>
 
 namespace trn::cli {
 
@@ -54,6 +55,8 @@ void add_energy_integrate_command(CLI::App* energy) {
         q.integration.rule = a->hold ? energy::Rule::Hold : energy::Rule::Trapezoid;
         q.integration.min_samples = a->min_samples;
         const auto opts = energy::parse_option_list(a->opts);
+        for (const auto& [option, out] : {std::pair{"--json", a->json}, {"--csv", a->csv}, {"--plot", a->plot}})
+            io::check_output_is_not_input(out, option, {{"log", a->log}, {"--markers", a->markers}});
         if (!a->json.empty()) io::check_output_file(a->json, "--json");
         if (!a->csv.empty()) io::check_output_file(a->csv, "--csv");
         if (!a->plot.empty()) io::check_output_file(a->plot, "--plot");

@@ -82,6 +82,9 @@ void localize(const LocalizeArgs& a) {
     if (!a.start.empty() && !a.start_latlon.empty()) throw Error("--start and --start-latlon: give one of them, not both");
     const LocalizeInputs in = resolve_localize_inputs(a.inputs);
     const std::string out = a.out.empty() ? a.inputs.dataset + "/localize" : a.out;
+    // The default folder comes with the dataset: a link there was planted, not chosen.
+    if (a.out.empty() && std::filesystem::is_symlink(out))
+        throw Error(out + ": is a symbolic link inside the dataset; trnkit does not write through it (remove it, or give --out)");
     io::check_output_folder(out, "localize", a.force);  // before the run, not after it
     for (const std::string& n : in.notes) std::cerr << "trnkit: note: " << n << "\n";
     const sim::Map& map = in.map;

@@ -12,6 +12,7 @@
 #include "options.hpp"
 #include "trn/error.hpp"
 #include "trn/io/atomic_file.hpp"
+#include "trn/io/output_folder.hpp"
 #include "trn/io/image_io.hpp"
 #include "trn/registry.hpp"
 
@@ -41,6 +42,7 @@ void add_register_command(CLI::App& app) {
     struct Args {
         std::string map, verify, out, backend = "cpu", air_out;
         std::uint64_t seed = 1;
+        bool force = false;
         std::vector<std::string> frames;
         double radius = 160, min_scale = 0.3, max_scale = 1.5;
         std::vector<double> anchor;
@@ -63,10 +65,18 @@ void add_register_command(CLI::App& app) {
     cmd->add_option("--air-out", a->air_out,
                     "Also write an AIR folder of the frames with these poses as truth and simulated odometry and magnetometer "
                     "(only when every pose passes the check)");
+    cmd->add_flag("--force", a->force, "Write --air-out into a non-empty folder that is not an earlier register output (its other files stay)");
     cmd->add_option("--seed", a->seed, "Seed of the simulated odometry and magnetometer of --air-out")->capture_default_str()->check(any_seed());
     cmd->callback([a] {
         if (a->min_scale > a->max_scale) throw Error("--min-scale must not exceed --max-scale");
-        if (!a->out.empty()) io::check_output_file(a->out, "--out");
+        if (!a->out.empty()) {
+            std::vector<std::pair<std::string, std::string>> inputs{{"--map", a->map}, {"--verify", a->verify}};
+            for (const std::string& f : a->frames) inputs.emplace_back("frame", f);
+            io::check_output_is_not_input(a->out, "--out", inputs);
+            io::check_output_file(a->out, "--out");
+        }
+        // An AIR folder is an output folder like any other: absent, empty or register's own.
+        if (!a->air_out.empty()) io::check_output_folder(a->air_out, "register", a->force, "--air-out");
         const std::vector<reg::PoseRow> rows = a->verify.empty() ? std::vector<reg::PoseRow>{} : reg::read_pose_rows(a->verify);
         const GrayImage map = load_gray(a->map);
         std::vector<GrayImage> frames;
@@ -132,6 +142,7 @@ void add_register_command(CLI::App& app) {
             reg::RealAirOptions o;
             o.odometry.seed = a->seed;
             o.magnetometer.seed = a->seed + 1;
+            io::open_output_folder(a->air_out, "register", a->force, "--air-out", io::Rerun::ReplacesPrevious);
             reg::write_real_air_folder(a->air_out, found, found_frames, o);
             std::cerr << "AIR folder " << a->air_out << ": " << found.size() << " frames\n";
         }

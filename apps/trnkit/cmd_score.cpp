@@ -49,6 +49,8 @@ void add_score_command(CLI::App& app) {
         ->check(real_in(0, 1));
     cmd->add_option("-o,--out", a->out, "Output CSV (default: standard output)");
     cmd->callback([a] {
+        // Never the output over an input: `--poses X -o X` would replace the poses with their scores.
+        if (!a->out.empty()) io::check_output_is_not_input(a->out, "--out", {{"--map", a->map}, {"--template", a->templ}, {"--poses", a->poses}});
         ScoreOptions options;
         options.sampling = parse_sampling(a->sampling);
         options.min_valid_fraction = a->min_valid;

@@ -23,7 +23,9 @@ void report_localization(const filter::LocalizationResult& result, const Backend
     numbers = filter::with_lock_numbers(result.summary, std::move(numbers));
     std::erase_if(numbers, [](const auto& kv) { return std::isnan(kv.second); });  // options not given
 
-    io::open_output_folder(r.out, r.command, r.force);
+    // One run's files: the previous run's are removed first (a failed rerun never leaves new
+    // results beside old plots), and a second run into the folder waits for this one.
+    io::open_output_folder(r.out, r.command, r.force, "--out", io::Rerun::ReplacesPrevious);
     filter::write_rows_csv(r.out + "/localization.csv", result.rows);
     filter::write_summary_json(r.out + "/summary.json", result.summary, strings, numbers);
     os << filter::format_summary(result.summary) << filter::format_lock_summary(result.summary) << r.after_summary << "summary JSON: " << r.out

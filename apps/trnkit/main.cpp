@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <iostream>
 #include <string>
@@ -11,6 +12,7 @@
 #include "commands.hpp"
 #include "trn/build_info.hpp"
 #include "trn/error.hpp"
+#include "trn/io/gnuplot.hpp"
 
 namespace {
 
@@ -84,5 +86,9 @@ int main(int argc, char** argv) {
     // Past a file-size limit (ulimit -f) write() then fails with EFBIG and the writer reports the
     // file, instead of the process dying silently and leaving a cut file behind.
     std::signal(SIGXFSZ, SIG_IGN);
+    // Helper programs by an absolute path found now, before anything changes folder, and never
+    // through a relative PATH entry ("", "."): plots run gnuplot in a work folder beside the output,
+    // where a dataset could have shipped a program of that name. (PATH unset: the system default.)
+    if (const char* path = std::getenv("PATH")) trn::io::set_gnuplot_program(trn::io::find_program("gnuplot", path));
     return check_stdout(run(argc, argv));
 }

@@ -51,6 +51,10 @@ std::unique_ptr<Backend> BackendRegistry::create(std::string_view spec, BackendO
     const std::size_t colon = spec.find(':');
     const std::string family_name(spec.substr(0, colon));
     std::string selector = colon == std::string_view::npos ? std::string() : std::string(spec.substr(colon + 1));
+    // "opencl:" names no device: refused rather than read as the family's first device.
+    if (colon != std::string_view::npos && selector.empty())
+        throw BackendUnavailable("backend '" + std::string(spec) + "': empty device after ':' (give an index or a name, e.g. " +
+                                 family_name + ":0, or just " + family_name + ")");
 
     const auto it = std::find_if(families_.begin(), families_.end(), [&](const BackendFamily& f) { return f.name == family_name; });
     if (it == families_.end()) {

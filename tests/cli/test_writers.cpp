@@ -168,6 +168,7 @@ TEST_F(Writers, SimulateRemovesTheStagingFolderOfAKilledRun) {
     ::waitpid(dead, nullptr, 0);
     const std::string left = path("flight.partial-" + std::to_string(dead));
     fs::create_directories(left);
+    std::ofstream(left + "/.trnkit-staging") << "trnkit simulate: staging folder\n";  // what every staging folder carries
     std::ofstream(left + "/frame_000000.png") << "half a frame";
     fs::create_directories(path("flight.partial-notapid"));  // not a staging name: left alone
     simulate("flight", 2);

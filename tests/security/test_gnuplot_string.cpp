@@ -82,7 +82,8 @@ class GnuplotRun : public SecurityTest {};
 TEST_F(GnuplotRun, RealGnuplotShowsEveryPayloadAsTextAndRunsNothing) {
     if (!io::gnuplot_available()) GTEST_SKIP() << "gnuplot not installed (scripts/install-deps.sh installs gnuplot-nox)";
     const auto payloads = injection_payloads(canary_);
-    std::string script = io::gnuplot_png_terminal(400, 300) + "set output 'probe.png'\nset print 'printed.txt'\n";
+    // gnuplot runs in a private work folder: what it prints goes to a full path (a test's own).
+    std::string script = io::gnuplot_png_terminal(400, 300) + "set output 'probe.png'\nset print " + gnuplot_string(path("printed.txt")) + "\n";
     for (const std::string& p : payloads) script += "print " + gnuplot_string(p) + "\n";
     // The same expressions where the plot writers use them: titles, axis labels, tic labels, keys.
     script += "set title " + gnuplot_string(payloads[0]) + "\nset xlabel " + gnuplot_string(payloads[4]) + "\nset ylabel " +
@@ -103,7 +104,8 @@ TEST_F(GnuplotRun, MacroOfTheOutputFolderNameStaysText) {
     const fs::path folder = dir_ / "x'; system 'touch CANARY'; print '";
     fs::create_directories(folder);
     const std::string label = "it's @GPVAL_PWD";
-    io::run_gnuplot({folder.string(), "m.gp", "set print 'printed.txt'\nprint " + gnuplot_string(label) + "\n", {}, "m.log", {}});
+    // gnuplot runs in a work folder inside `folder`, so GPVAL_PWD still holds the folder's name.
+    io::run_gnuplot({folder.string(), "m.gp", "set print " + gnuplot_string((folder / "printed.txt").string()) + "\nprint " + gnuplot_string(label) + "\n", {}, "m.log", {}});
     EXPECT_FALSE(fs::exists(folder / "CANARY")) << "the folder name ran as code";
     EXPECT_EQ(slurp((folder / "printed.txt").string()), label + "\n");
 }
@@ -163,9 +165,9 @@ TEST_F(GnuplotRun, FailedScriptIsAnErrorNamingTheLogAndLeavesNoImage) {
 }
 
 TEST_F(GnuplotRun, MissingGnuplotIsAClearError) {
-    const char* old = std::getenv("PATH");
-    const std::string saved = old ? old : "";
-    ::setenv("PATH", path("empty-bin").c_str(), 1);  // the runner lets execvp search PATH
+    // The library reads no PATH: the CLI resolves gnuplot at start-up and sets it ("" = none found).
+    const std::string saved = io::gnuplot_program();
+    io::set_gnuplot_program(io::find_program("gnuplot", path("empty-bin")));
     EXPECT_FALSE(io::gnuplot_available());
     const std::string folder = path("out\nput");  // the message stays one line
     fs::create_directories(folder);
@@ -176,7 +178,7 @@ TEST_F(GnuplotRun, MissingGnuplotIsAClearError) {
         EXPECT_NE(std::string(e.what()).find("gnuplot not found"), std::string::npos) << e.what();
         EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
     }
-    ::setenv("PATH", saved.c_str(), 1);
+    io::set_gnuplot_program(saved);
 }
 
 }  // namespace

@@ -43,6 +43,9 @@ TEST(Registry, RefusesClearlyAndNeverFallsBack) {
     // An index too big for any integer is out of range too, not a std::stoi exception.
     EXPECT_NE(message("cpu:99999999999999999999").find("device index 99999999999999999999 out of range"), std::string::npos);
     EXPECT_NE(message("cpu:nosuch").find("no cpu device name or driver contains 'nosuch'"), std::string::npos);
+    // "opencl:" names no device (issue 23, finding 8): refused, not read as the first device.
+    EXPECT_NE(message("cpu:").find("backend 'cpu:': empty device after ':'"), std::string::npos);
+    EXPECT_NE(message("opencl:").find("empty device after ':'"), std::string::npos);
 }
 
 // Device choice through BackendOptions::default_device, on a registry of two real cpu backends;

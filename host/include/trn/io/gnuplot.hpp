@@ -4,8 +4,14 @@
 //    early (see there), and every terminal is `noenhanced` (gnuplot_png_terminal()).
 //  - Scripts name their data and image files by plain basenames we choose; gnuplot runs in the
 //    output folder, so no user path is ever pasted into a script.
-//  - gnuplot is started without a shell (posix_spawnp with an argv; PATH is searched by the C
-//    library), its output goes to a log file in that folder.
+//  - gnuplot is started without a shell (posix_spawn with an argv) by an absolute path resolved
+//    before anything changes folder (set_gnuplot_program), never through a relative PATH entry.
+//  - It runs in a private work folder (created 0700 beside the images, or under /tmp for a device
+//    or FIFO target), so nothing in the output folder -- a planted `gnuplot`, a link named like its
+//    log -- is run or written through. Only then are the images written to their targets and the
+//    script, data and log (the sidecars) beside them, each by the one rule of atomic_file.hpp; a
+//    sidecar never replaces a file that is not an earlier sidecar of the same plot (its script's
+//    first line names them), and a device or FIFO target gets no sidecars.
 #include <string>
 #include <string_view>
 #include <utility>
@@ -38,8 +44,9 @@ std::string plain_basename(std::string_view name);
 // "set terminal pngcairo size W,H noenhanced" plus a font when given (a fixed font name of ours).
 std::string gnuplot_png_terminal(int width, int height, std::string_view font = {});
 
-// An image the user named (any path): gnuplot writes `name` (a plain basename) in `folder`, which
-// is then renamed to `path` when the two differ. Data and script files are named after `name`.
+// An image the user named (any path): gnuplot writes `name` (a plain basename) in its work folder,
+// and those bytes are then written to `path` (a file of the sanitised name in `folder` is never
+// touched). Data and script files are named after `name`.
 struct PlotTarget {
     std::string folder;  // parent of path, "." when it has none
     std::string name;    // plain_basename(filename of path)
@@ -47,11 +54,12 @@ struct PlotTarget {
 };
 PlotTarget plot_target(const std::string& path);
 
-// One gnuplot run. Every name is a plain basename inside `folder` (checked before anything is
-// written); the data files and the script are written with write_file_atomic, then gnuplot runs
-// in `folder` with stdout/stderr in `log`. Afterwards each image must exist and not be empty and is
-// moved to its target path. Errors (a missing gnuplot, a failed script, no image) are trn::Error
-// naming the script and the log; on failure the images of this run are removed.
+// One gnuplot run. Every name is a plain basename (checked before anything is written); the data
+// files and the script go into a private work folder, gnuplot runs there with stdout/stderr in
+// `log`. Afterwards each image must exist and not be empty; the sidecars are put into `folder` and
+// the images written to their targets. Errors (a missing gnuplot, a failed script, no image, a
+// sidecar name taken by someone else's file) are trn::Error naming the script and the log; on
+// failure no image target is touched.
 struct GnuplotJob {
     std::string folder;
     std::string script_name, script;
@@ -61,8 +69,20 @@ struct GnuplotJob {
 };
 void run_gnuplot(const GnuplotJob& job);
 
-// Whether `gnuplot --version` can be started and succeeds (no shell; PATH searched by the C library).
+// Whether `gnuplot --version` can be started and succeeds (no shell; the program above).
 bool gnuplot_available();
+
+// The gnuplot program: an absolute path. The CLI sets it from PATH at start-up (find_program; ""
+// when PATH has none: plots then fail with "gnuplot not found on PATH"). Never set, the library
+// looks in the system's default path (confstr(_CS_PATH), e.g. /bin:/usr/bin) -- it reads no
+// environment. A relative path is refused.
+void set_gnuplot_program(std::string absolute_path);
+std::string gnuplot_program();
+
+// The first absolute entry of `search_path` (a PATH-like list) holding an executable regular file
+// `name`, "" when none. Relative and empty entries ("." or "::", which mean the current folder)
+// are skipped: a program is never found in whatever folder the process happens to be in.
+std::string find_program(std::string_view name, std::string_view search_path);
 
 }  // namespace trn::io
 TRN_API_END
