@@ -300,7 +300,10 @@ ImageSize check_image_file(const std::string& path) {
                            "or its header is damaged");
     const std::string what = name + ": image";
     const double bytes = double(size->width) * double(size->height) * size->decode_bytes_per_pixel + double(size->decode_extra_bytes);
-    if (size->width <= limits::kMaxImageSide && size->height <= limits::kMaxImageSide && bytes > kMaxImageDecodeBytes)
+    if (size->width > limits::kMaxImageSide || size->height > limits::kMaxImageSide ||
+        double(size->width) * double(size->height) > double(limits::kMaxMapPixels))  // the side and pixel limits' own messages
+        limits::check_image(what, size->width, size->height, limits::kMaxMapPixels, size->decode_bytes_per_pixel);
+    if (bytes > kMaxImageDecodeBytes)
         throw Error(what + " " + std::to_string(size->width) + "x" + std::to_string(size->height) + " (" + size->format + ") needs ~" +
                     limits::format_bytes(bytes) + " to decode (limit " + limits::format_bytes(kMaxImageDecodeBytes) + " per image)");
     limits::check_image(what, size->width, size->height, limits::kMaxMapPixels, size->decode_bytes_per_pixel);

@@ -112,7 +112,7 @@ std::string implausible(std::size_t c, double v) {
     if (name == "Longitude") return v < -180 || v > 180 ? outside(-180, 180) : "";
     if (name == "MapX" || name == "MapY") return std::fabs(v) > kMaxMapPixels ? outside(-kMaxMapPixels, kMaxMapPixels) : "";
     if (name.rfind("Imu", 0) == 0 || name.rfind("Orientation", 0) == 0) return "";  // see not_unit
-    if (name == "RelativeAltitude")  // the camera's height gives each frame's scale: a flight altitude or nothing
+    if (name == "RelativeAltitude" && std::fabs(v) <= kMaxMetres)  // the camera's height gives each frame's scale
         return v > 0 && v <= kMaxAltitudeM ? "" : name + " " + number_text(v) + " m is not a flight altitude (expected (0, 20000] m)";
     return std::fabs(v) > kMaxMetres ? outside(-kMaxMetres, kMaxMetres) : "";
 }

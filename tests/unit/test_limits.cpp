@@ -164,10 +164,11 @@ TEST_F(LimitFiles, HeaderSizesMatchWhatOpenCvWrites) {
         EXPECT_EQ(size->width, 37) << name;
         EXPECT_EQ(size->height, 23) << name;
     }
-    // Issue 23: the formats OpenCV also reads, so that load_gray refuses what it cannot measure.
+    // Issue 23: the formats OpenCV also reads, so that load_gray refuses what it cannot measure
+    // (JPEG 2000 too, but this OpenCV cannot write it: covered by the header reader's code only).
     cv::Mat colour_float;
     colour.convertTo(colour_float, CV_32FC3, 1.0 / 255);
-    for (const char* name : {"a.hdr", "a.pfm", "a.webp", "a.jp2", "a.ras", "a.pam"}) {
+    for (const char* name : {"a.hdr", "a.pfm", "a.webp", "a.ras", "a.pam"}) {
         const std::string n = name;
         ASSERT_TRUE(cv::imwrite(path(name), n == "a.hdr" || n == "a.pfm" ? colour_float : colour)) << name;
         const auto size = read_image_size(path(name));
