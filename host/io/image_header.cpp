@@ -296,8 +296,8 @@ ImageSize check_image_file(const std::string& path) {
     const auto size = read_image_size(path);
     const std::string name = io::quote_input(path, 512);
     if (!size)
-        throw Error(name + ": not an image trnkit reads (PNG, JPEG, TIFF, BMP, PNM/PAM/PFM, Radiance HDR, WebP, JPEG 2000, Sun raster), "
-                           "or its header is damaged");
+        throw Error(name + ": not a readable image (a damaged header, or not a format trnkit reads: PNG, JPEG, TIFF, BMP, PNM/PAM/PFM, "
+                           "Radiance HDR, WebP, JPEG 2000, Sun raster)");
     const std::string what = name + ": image";
     const double bytes = double(size->width) * double(size->height) * size->decode_bytes_per_pixel + double(size->decode_extra_bytes);
     if (size->width > limits::kMaxImageSide || size->height > limits::kMaxImageSide ||

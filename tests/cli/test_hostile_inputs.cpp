@@ -141,7 +141,7 @@ TEST_F(HostileInputs, ImageHeadersClaimingHugeImagesAreRefusedBeforeDecoding) {
     expect_refused(run("sobel " + quoted(at("big.pfm")) + " --out " + quoted(at("s2"))), "(PFM) needs ~19 GB to decode", "PFM");
     expect_refused(run("sobel " + quoted(at("wide.pam")) + " --out " + quoted(at("s3"))), "image 70000x2 is too large", "PAM");
     std::ofstream(at("text.png")) << "not an image";
-    expect_refused(run("sobel " + quoted(at("text.png")) + " --out " + quoted(at("s4"))), "not an image trnkit reads", "unknown format");
+    expect_refused(run("sobel " + quoted(at("text.png")) + " --out " + quoted(at("s4"))), "not a readable image (a damaged header, or not a format trnkit reads", "unknown format");
 }
 
 // Finding 5: EACCES and ENAMETOOLONG gave exit 2 "unexpected error".
