@@ -18,6 +18,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             require(parser.line() > last_line, "line number did not advance");
             last_line = parser.line();
             require(!r.filename.empty(), "empty Filename accepted");
+            require(r.relative_altitude_m > 0 && r.relative_altitude_m <= 20000, "RelativeAltitude outside (0, 20000] m accepted");
             const double numbers[] = {r.latitude_deg, r.longitude_deg, r.relative_altitude_m, r.imu.x, r.imu.y, r.imu.z, r.imu.w,
                                       r.pose_m.x, r.pose_m.y, r.pose_m.z, r.orientation.x, r.orientation.y, r.orientation.z,
                                       r.orientation.w, r.map_x, r.map_y, r.svo_m.x, r.svo_m.y, r.svo_m.z};

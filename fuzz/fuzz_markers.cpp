@@ -32,6 +32,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         for (const auto& iv : en::marker_intervals(m, en::ClockMapping{realtime}))
             require(std::isfinite(iv.start) && std::isfinite(iv.end) && iv.end >= iv.start, "bad interval from accepted markers");
     const en::MarkerFile back = en::parse_markers(en::format_markers(m), "round-trip.csv");  // our own output must parse
+    for (const auto& [k, v] : m.meta)
+        for (const char c : k + v) require(static_cast<unsigned char>(c) >= 0x20 && c != 0x7f, "a control character accepted in the header");
     require(back.meta == m.meta, "round trip changed the header");
     require(back.rows.size() == m.rows.size(), "round trip changed the row count");
     for (std::size_t i = 0; i < m.rows.size(); ++i) {

@@ -22,6 +22,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     for (const auto& p : poses) {
         require(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.yaw) && std::isfinite(p.scale), "non-finite pose accepted");
         require(p.scale > 0, "scale <= 0 accepted");
+        require(std::fabs(p.yaw) <= 1000 && std::fabs(p.x) <= 1e7 && std::fabs(p.y) <= 1e7 && p.scale <= 1e4,
+                "a pose beyond any map (|yaw| > 1000 rad, |x| > 1e7 ...) accepted");
         std::snprintf(buf, sizeof buf, "%.9g,%.9g,%.9g,%.9g\n", p.x, p.y, p.yaw, p.scale);  // 9 digits: floats exactly
         csv += buf;
     }

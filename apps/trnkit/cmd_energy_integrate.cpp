@@ -11,6 +11,7 @@
 #include "trn/energy/run_report.hpp"
 #include "trn/error.hpp"
 #include "trn/io/atomic_file.hpp"
+#include "trn/io/input_file.hpp"
 #include <utility>
 
 namespace trn::cli {
@@ -72,11 +73,12 @@ void add_energy_integrate_command(CLI::App* energy) {
             if (f.energy.flag.empty()) sum += f.energy.net_j, ++usable;
         std::fprintf(stderr, "%s: %zu frame(s), %zu usable, mean net %.6g mJ/frame, idle %.4g W; align %s offset %.6f s drift %.3g (residual %.3g s); "
                      "markers +-1 sample (%.3g s) move energies by %.3g%% / %.3g%%\n",
-                     r.platform.c_str(), r.frames.size(), usable, usable ? 1e3 * sum / usable : 0.0, r.idle_w, r.align_mode.c_str(),
+                     io::quote_input(r.platform, 200).c_str(), r.frames.size(), usable, usable ? 1e3 * sum / usable : 0.0, r.idle_w, r.align_mode.c_str(),
                      r.alignment.mapping.offset_s, r.alignment.mapping.drift, r.alignment.residual_s, r.shift.dt_s, 100 * r.shift.relative_minus,
                      100 * r.shift.relative_plus);
         if (r.align_mode == "auto") std::fprintf(stderr, "  alignment confidence: %s\n", r.alignment.confidence.c_str());
-        for (const auto& w : r.warnings) std::fprintf(stderr, "  warning: %s\n", w.c_str());
+        // Warnings quote input text: control characters escaped, so a log or marker file cannot drive the terminal.
+        for (const auto& w : r.warnings) std::fprintf(stderr, "  warning: %s\n", io::quote_input(w, 1000).c_str());
         if (!a->plot.empty()) {
             const auto trace = energy::read_power_log(a->log, a->format, opts);
             energy::plot_power_trace(trace, r, a->plot);

@@ -160,6 +160,7 @@ void localize(const LocalizeArgs& a) {
         if (std::string(e.what()).rfind(dataset, 0) == 0) throw;  // the flight source's own errors name their place
         throw Error(source.position() + ": " + e.what());           // which row of the flight the library choked on
     }
+    source.check_unchanged();  // frames of a dataset replaced mid-run are not this flight's: no report
 
     if (in.to_latlon)  // the estimates also as latitude / longitude
         for (filter::LocalizationRow& r : result.rows) {

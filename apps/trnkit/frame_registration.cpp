@@ -8,6 +8,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "trn/io/input_file.hpp"
 #include "trn/error.hpp"
 #include "trn/filter/visual_odometry.hpp"
 #include "trn/parse_number.hpp"
@@ -321,12 +322,14 @@ Uniqueness check_unique(Backend& backend, const MapHandle& map, const GrayImage&
 }
 
 std::vector<PoseRow> read_pose_rows(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw Error(path + ": cannot open");
+    // Read whole after the file checks (a FIFO or device is refused), a UTF-8 byte order mark skipped.
+    const std::string text = io::read_input_file(path, io::kMaxTableFileBytes, "a pose file");
+    std::istringstream in(std::string(io::strip_bom(text)));
     std::vector<PoseRow> rows;
     std::string line;
     for (int n = 1; std::getline(in, line); ++n) {
         const std::string where = path + ":" + std::to_string(n) + ": ";
+        if (line.size() > 4096) throw Error(where + "line of " + std::to_string(line.size()) + " bytes (at most 4096); not a pose file?");
         if (n == 1) {
             if (line.rfind("frame,x,y,yaw,scale,ncc", 0) != 0) throw Error(where + "expected the header frame,x,y,yaw,scale,ncc");
             continue;
@@ -339,10 +342,12 @@ std::vector<PoseRow> read_pose_rows(const std::string& path) {
         double v[5];
         for (int i = 0; i < 5; ++i) {
             const auto x = parse_finite_real(f[i + 1]);
-            if (!x) throw Error(where + "column " + std::to_string(i + 2) + " '" + f[i + 1] + "' is not a finite number");
+            if (!x) throw Error(where + "column " + std::to_string(i + 2) + " '" + io::quote_input(f[i + 1]) + "' is not a finite number");
             v[i] = *x;
         }
         if (!(v[3] > 0)) throw Error(where + "scale must be positive");
+        if (std::fabs(v[0]) > 1e7 || std::fabs(v[1]) > 1e7 || std::fabs(v[2]) > 1000 || v[3] > 1e4)
+            throw Error(where + "x, y beyond 1e7 px, |yaw| beyond 1000 rad or scale beyond 1e4: not a pose");
         rows.push_back({f[0], {static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2]), static_cast<float>(v[3])}, v[4]});
     }
     if (rows.empty()) throw Error(path + ": no poses");

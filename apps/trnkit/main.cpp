@@ -5,9 +5,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <iostream>
 #include <string>
 #include <string_view>
+#include <system_error>
 
 #include "commands.hpp"
 #include "trn/build_info.hpp"
@@ -18,7 +20,12 @@ namespace {
 
 // An error is one line whatever it quotes: a newline or other control character inside a file name
 // or an option value is shown escaped (\n, \x1b), so scripts reading stderr line by line see it whole.
+// Past 4096 bytes the rest is cut ("... (N bytes)"): readers quote at most 80 bytes of a field, this
+// catches whatever else would print a 100 KB line.
 std::string one_line(std::string_view text) {
+    constexpr std::size_t kMaxBytes = 4096;
+    const std::size_t full = text.size();
+    if (full > kMaxBytes) text = text.substr(0, kMaxBytes);
     std::string out;
     for (const unsigned char c : text) {
         if (c == '\n') out += "\\n";
@@ -31,6 +38,7 @@ std::string one_line(std::string_view text) {
             out += hex[c & 15];
         } else out += char(c);
     }
+    if (full > kMaxBytes) out += "... (" + std::to_string(full) + " bytes)";
     return out;
 }
 
@@ -59,6 +67,13 @@ int run(int argc, char** argv) {
     } catch (const CLI::ParseError& e) {
         return app.exit(e);
     } catch (const trn::Error& e) {
+        std::cerr << "trnkit: error: " << one_line(e.what()) << "\n";
+        return 1;
+    } catch (const std::filesystem::filesystem_error& e) {  // an errno from a path (EACCES, ENAMETOOLONG ...): bad input
+        std::cerr << "trnkit: error: " << one_line(e.path1().empty() ? std::string() : e.path1().string().substr(0, 512) + ": ")
+                  << one_line(e.code().message()) << "\n";
+        return 1;
+    } catch (const std::system_error& e) {
         std::cerr << "trnkit: error: " << one_line(e.what()) << "\n";
         return 1;
     } catch (const std::exception& e) {

@@ -151,9 +151,16 @@ std::string bench_markdown(const BenchResult& res) {
 
 namespace {
 
+// gnuplot reads an explicit tic label as a format string: a literal % is written %%.
+std::string tic_label(const std::string& text) {
+    std::string out;
+    for (const char c : text) out += c == '%' ? std::string("%%") : std::string(1, c);
+    return out;
+}
+
 std::string xtics(const BenchResult& res) {
     std::string s = "set xtics (";
-    for (std::size_t k = 0; k < res.rows.size(); ++k) s += (k ? ", " : "") + io::gnuplot_string(res.rows[k].target) + " " + std::to_string(k);
+    for (std::size_t k = 0; k < res.rows.size(); ++k) s += (k ? ", " : "") + io::gnuplot_string(tic_label(res.rows[k].target)) + " " + std::to_string(k);
     return s + ")\n";
 }
 

@@ -15,6 +15,14 @@ namespace {
 
 using io::gnuplot_string;
 
+// gnuplot reads an explicit tic label as a format string ("100% load" drew "100 1.000000oad", and
+// "%s" failed the plot): a literal % is written %%.
+std::string tic_label(const std::string& text) {
+    std::string out;
+    for (const char c : text) out += c == '%' ? std::string("%%") : std::string(1, c);
+    return out;
+}
+
 // One number per line, full precision.
 std::string column(const std::vector<double>& values) {
     std::ostringstream d;
@@ -178,7 +186,7 @@ void plot_boxes(const std::vector<PlotSeries>& series, const std::string& image,
     s << terminal_for(target.path, 420 + 180 * static_cast<int>(series.size()), 600) << "set output " << gnuplot_string(target.name) << "\n";
     s << "set style boxplot outliers pointtype 7\nset style fill solid 0.4 border -1\nset grid ytics\n";
     s << "set ylabel " << gnuplot_string(ylabel) << "\nset xtics (";
-    for (std::size_t k = 0; k < series.size(); ++k) s << (k ? ", " : "") << gnuplot_string(series[k].name) << " " << k + 1;
+    for (std::size_t k = 0; k < series.size(); ++k) s << (k ? ", " : "") << gnuplot_string(tic_label(series[k].name)) << " " << k + 1;
     s << ") rotate by -20\nset xrange [0.4:" << series.size() + 0.6 << "]\nset key outside right top\nplot ";
     std::ostringstream means;
     means.precision(12);

@@ -11,6 +11,7 @@
 
 #include "sha256.hpp"
 #include "text_input.hpp"
+#include "trn/io/input_file.hpp"
 #include "trn/error.hpp"
 #include "trn/io/provenance.hpp"
 
@@ -205,10 +206,11 @@ std::string run_report_csv(const RunReport& r) {
 
 RunReport parse_run_report_json(const std::string& text, const std::string& name) {
     json j;
+    io::check_json_depth(text, name);  // a 100000-deep [[...]] would overflow the stack in dump()
     try {
         j = json::parse(text);
     } catch (const json::exception& e) {
-        throw Error(name + ": not JSON (" + e.what() + ")");
+        throw Error(name + ": not JSON (" + io::quote_input(e.what(), 200) + ")");
     }
     RunReport r;
     try {

@@ -4,7 +4,8 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
-#include <fstream>
+
+#include "trn/io/input_file.hpp"
 
 namespace trn::energy::text {
 
@@ -149,18 +150,8 @@ void fail(const std::string& source, std::size_t line, const std::string& why) {
     throw Error(source + ":" + std::to_string(line) + ": " + why);
 }
 
-std::string read_file(const std::string& path, std::size_t max_bytes) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error(path + ": cannot open");
-    std::string text;
-    char buf[1 << 16];
-    while (in.read(buf, sizeof buf) || in.gcount() > 0) {
-        text.append(buf, static_cast<std::size_t>(in.gcount()));
-        if (text.size() > max_bytes)
-            throw Error(path + ": larger than " + std::to_string(max_bytes >> 20) + " MiB (a device or not the right file?)");
-    }
-    if (in.bad()) throw Error(path + ": read error");
-    return text;
-}
+// The one open point of every energy input (power logs, markers, run reports): a regular file of
+// at most max_bytes (trn/io/input_file.hpp), so a FIFO or device is refused instead of read for ever.
+std::string read_file(const std::string& path, std::size_t max_bytes) { return io::read_input_file(path, max_bytes); }
 
 }  // namespace trn::energy::text

@@ -35,8 +35,9 @@ std::optional<double> parse_datetime(std::string_view s, bool* zone_known = null
 
 [[noreturn]] void fail(const std::string& source, std::size_t line, const std::string& why);
 
-// The whole file as text, refusing one larger than max_bytes: a device such as /dev/zero or
-// /dev/full given as an input would otherwise be read for ever. Errors name the path.
+// The whole file as text, refusing one larger than max_bytes and anything but a regular file: a
+// device such as /dev/zero or a FIFO given as an input would otherwise be read (or waited on) for
+// ever. Errors name the path (io::read_input_file).
 constexpr std::size_t kMaxInputBytes = std::size_t{256} << 20;        // power logs (hours at 1 kHz)
 constexpr std::size_t kMaxSmallInputBytes = std::size_t{64} << 20;    // marker files, run reports
 std::string read_file(const std::string& path, std::size_t max_bytes = kMaxInputBytes);

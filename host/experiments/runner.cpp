@@ -12,6 +12,7 @@
 #include "trn/error.hpp"
 #include "trn/parse_number.hpp"
 #include "trn/experiments/experiment.hpp"
+#include "trn/io/input_file.hpp"
 #include "trn/io/atomic_file.hpp"
 #include "trn/io/output_folder.hpp"
 #include "trn/io/provenance.hpp"
@@ -55,12 +56,12 @@ Shard parse_shard(const std::string& text) {
 namespace {
 
 Json read_json(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw Error(path + ": cannot open");
+    const std::string text = io::read_input_file(path, io::kMaxJsonFileBytes, "a job file");
+    io::check_json_depth(text, path);
     try {
-        return Json::parse(in);
+        return Json::parse(text);
     } catch (const std::exception& e) {
-        throw Error(path + ": not valid JSON (" + e.what() + "); delete it to re-run that job");
+        throw Error(path + ": not valid JSON (" + io::quote_input(e.what(), 200) + "); delete it to re-run that job");
     }
 }
 
@@ -97,7 +98,31 @@ std::string command_prefix(const ExperimentOptions& o, const std::string& out) {
 
 }  // namespace
 
+namespace {
+
+// --backend is checked for form before anything (--list-jobs and --prepare too, whose output
+// dispatchers pass on): "fastest" or a family this build has, optionally ":" and an index or a
+// name text. Whether the device exists is left to the job runs (a login node may have no GPU).
+void check_backend_spec(const std::string& spec) {
+    if (spec == "fastest") return;
+    const std::size_t colon = spec.find(':');
+    const std::string family = spec.substr(0, colon);
+    std::string known;
+    bool found = false;
+    for (const BackendFamily& f : default_registry().families()) known += (known.empty() ? "" : ", ") + f.name, found |= f.name == family;
+    if (!found) throw Error("experiment: --backend '" + io::quote_input(spec) + "': unknown backend (one of fastest, " + known + ")");
+    if (colon == std::string::npos) return;
+    const std::string selector = spec.substr(colon + 1);
+    if (selector.empty() || selector.size() > 64 ||
+        selector.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789 ._-") != std::string::npos)
+        throw Error("experiment: --backend '" + io::quote_input(spec) + "': after '" + family +
+                    ":' comes a device index or name text (letters, digits, space . _ -)");
+}
+
+}  // namespace
+
 std::size_t run_experiment(const ExperimentOptions& o) {
+    check_backend_spec(o.backend);
     const auto study = make_study(o.study, o.shared_data);
     Json config = study->config(o.quick);
     config["study"] = o.study;

@@ -3,9 +3,9 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 
 #include "trn/error.hpp"
+#include "trn/io/input_file.hpp"
 #include "trn/filter/nadir_warp.hpp"
 #include "trn/sim/render.hpp"
 
@@ -13,7 +13,6 @@ namespace trn::filter {
 
 namespace {
 
-constexpr double kMaxAltitudeM = 20000;  // above any UAV; beyond it RelativeAltitude is a broken file
 // Below this the frame is taken as level and left as it is (a quaternion written for roll = pitch = 0
 // reads back as ~1e-14 deg).
 constexpr double kLevelDeg = 1e-6;
@@ -56,10 +55,7 @@ void AirFlightSource::check_rows(MapExtent map) {
     std::string first_missing, first_odometry_off, first_oblique;
     double start_x = 0, start_y = 0, svo_e0 = 0, svo_n0 = 0;
     while (rows.next(r)) {
-        const std::string at = place(rows, r.filename) + ": ";
-        if (!(r.relative_altitude_m > 0 && r.relative_altitude_m <= kMaxAltitudeM))
-            throw Error(at + "RelativeAltitude " + number(r.relative_altitude_m) + " m is not a flight altitude (expected (0, " +
-                        number(kMaxAltitudeM) + "] m)");
+        const std::string at = place(rows, r.filename) + ": ";  // RelativeAltitude in (0, 20000] m: AirMetadataParser's check
         const bool has_truth = std::isfinite(r.map_x) && std::isfinite(r.map_y);  // empty MapX/MapY: a flight without truth
         const bool off_map = has_truth && map.width > 0 && map.height > 0 &&
                              !(r.map_x >= 0 && r.map_x < map.width && r.map_y >= 0 && r.map_y < map.height);
@@ -93,6 +89,15 @@ void AirFlightSource::check_rows(MapExtent map) {
         warnings_.push_back(reader_.folder() + ": the odometry leaves the map on " + std::to_string(odometry_off) + " of " +
                             std::to_string(count) + " rows (first: " + first_odometry_off + ")");
     if (hint_ == 0) hint_ = used;
+    if (!(rows.identity() == reader_.identity())) check_unchanged();  // replaced between the two reads
+}
+
+// simulate replaces a dataset by renaming a new folder over it: rows read from the old
+// metadata.csv would be paired with the new frames (a clean run's 0.5 m error became 28 m).
+void AirFlightSource::check_unchanged() const {
+    if (!reader_.unchanged())
+        throw Error(reader_.folder() + "/metadata.csv: the dataset was replaced or changed while it was read (another trnkit simulate "
+                                       "writing it?); the frames no longer match the rows, run again when it is complete");
 }
 
 std::string AirFlightSource::position() const { return place(reader_, last_filename_); }
@@ -149,6 +154,7 @@ bool AirFlightSource::next(FlightSample& s) {
         }
         return true;
     }
+    check_unchanged();
     if (attempted_ > 0 && loaded_ == 0)
         throw Error(reader_.folder() + ": none of the " + std::to_string(attempted_) + " frames could be read (first: " +
                     first_load_error_ + ")");
@@ -190,12 +196,19 @@ bool SimulatedFlightSource::next(FlightSample& s) {
 }
 
 std::size_t count_air_rows(const std::string& folder) {
-    std::ifstream in(folder + "/metadata.csv");
-    if (!in) return 0;
+    std::string text;
+    try {  // a FIFO, a device or a huge file is reported by the AirReader that reads it next
+        text = io::read_input_file(folder + "/metadata.csv", io::kMaxTableFileBytes, "metadata.csv");
+    } catch (const Error&) {
+        return 0;
+    }
     std::size_t lines = 0;
-    std::string line;
-    while (std::getline(in, line))
-        if (!line.empty()) ++lines;
+    for (std::size_t at = 0; at < text.size();) {
+        std::size_t end = text.find('\n', at);
+        if (end == std::string::npos) end = text.size();
+        if (end > at) ++lines;
+        at = end + 1;
+    }
     return lines ? lines - 1 : 0;
 }
 

@@ -1,7 +1,6 @@
 // trn/io/geotiff.hpp with GDAL: the raster, its geotransform and CRS; lat/lon through PROJ.
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <mutex>
 #include <opencv2/imgproc.hpp>
 
@@ -11,6 +10,7 @@
 
 #include "trn/error.hpp"
 #include "trn/io/geotiff.hpp"
+#include "trn/io/input_file.hpp"
 #include "trn/limits.hpp"
 
 namespace trn::io {
@@ -31,6 +31,31 @@ std::string number(double v) {
     std::snprintf(buf, sizeof buf, "%.10g", v);
     return buf;
 }
+
+// A GDAL configuration option for this thread only, restored when done: the restrictions below
+// are passed in code, never read from (or left in) the environment of an embedding program.
+class ThreadOption {
+public:
+    ThreadOption(const char* key, const char* value) : key_(key) {
+        const char* old = CPLGetThreadLocalConfigOption(key, nullptr);
+        had_ = old != nullptr;
+        if (had_) old_ = old;
+        CPLSetThreadLocalConfigOption(key, value);
+    }
+    ~ThreadOption() { CPLSetThreadLocalConfigOption(key_, had_ ? old_.c_str() : nullptr); }
+    ThreadOption(const ThreadOption&) = delete;
+    ThreadOption& operator=(const ThreadOption&) = delete;
+
+private:
+    const char* key_;
+    std::string old_;
+    bool had_ = false;
+};
+
+// The raster drivers a map needs. Not VRT (an XML file naming other files, /etc/passwd or
+// /vsicurl/ URLs, as its pixels), not the network or archive drivers, not any driver whose
+// "file" is a connection string.
+const char* const kAllowedDrivers[] = {"GTiff", "PNG", "JPEG", nullptr};
 
 struct DatasetCloser {
     void operator()(GDALDataset* d) const { GDALClose(d); }
@@ -56,12 +81,18 @@ void read_band(GDALDataset& ds, int b, cv::Mat& out, const std::string& path) {
 bool geotiff_supported() { return true; }
 
 GeoTiff read_geotiff(const std::string& path) {
-    if (!std::filesystem::exists(path)) throw Error(path + ": no such file");
+    // A local regular file only: no /vsicurl/ or other virtual path, no "GTIFF_DIR:2:x.tif" or
+    // other sub-dataset syntax (neither names a file), no FIFO or device.
+    if (path.rfind("/vsi", 0) == 0) throw Error(path + ": GDAL virtual file systems (/vsi...) are not read; give a local file");
+    check_input_file(path, kMaxImageFileBytes, "a map");
     register_drivers();
+    // Only the file itself: no directory listing on open, so no sibling files (.aux.xml, .ovr,
+    // .msk) are looked for or followed, and no .aux.xml metadata is read or written.
+    const ThreadOption no_siblings("GDAL_DISABLE_READDIR_ON_OPEN", "EMPTY_DIR"), no_pam("GDAL_PAM_ENABLED", "NO");
     CPLErrorReset();
-    std::unique_ptr<GDALDataset, DatasetCloser> ds(
-        GDALDataset::FromHandle(GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
-    if (!ds) throw Error(path + ": not a readable GeoTIFF" + last_gdal_error());
+    std::unique_ptr<GDALDataset, DatasetCloser> ds(GDALDataset::FromHandle(
+        GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, const_cast<char**>(kAllowedDrivers), nullptr, nullptr)));
+    if (!ds) throw Error(path + ": not a readable GeoTIFF (GTiff, PNG and JPEG files are read; not VRT or other indirections)" + last_gdal_error());
 
     GeoTiff g;
     const int width = ds->GetRasterXSize(), height = ds->GetRasterYSize(), bands = ds->GetRasterCount();

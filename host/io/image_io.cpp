@@ -13,12 +13,10 @@
 namespace trn {
 
 GrayImage load_gray(const std::string& path) {
-    if (!std::filesystem::exists(path)) throw Error(path + ": no such file");
-    // Sizes the header states are checked before decoding; other formats after (OpenCV refuses
-    // more than 2^30 pixels by itself, which is also kMaxMapPixels).
+    // A regular file in a format whose header trnkit reads, its sides, pixels and decode cost
+    // within the limits, before OpenCV allocates anything (image_header.hpp).
+    check_image_file(path);
     const std::string what = path + ": image";
-    if (const auto size = read_image_size(path))
-        limits::check_image(what, size->width, size->height, limits::kMaxMapPixels, limits::kLoadBytesPerPixel);
     GrayImage img = io::detail::decode_gray(path);
     limits::check_image(what, img.width, img.height, limits::kMaxMapPixels, limits::kLoadBytesPerPixel);
     return img;

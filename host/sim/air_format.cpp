@@ -12,6 +12,7 @@
 
 #include "trn/error.hpp"
 #include "trn/io/atomic_file.hpp"
+#include "trn/io/input_file.hpp"
 #include "trn/io/provenance.hpp"
 
 namespace trn::sim {
@@ -79,6 +80,25 @@ bool split_csv(const std::string& line, std::vector<std::string>& out, std::stri
 // meaningful: a MapX of 1e300 is a broken file, not a position.
 constexpr double kMaxMetres = 1e7;       // Pose*, Svo*, RelativeAltitude: 10,000 km
 constexpr double kMaxMapPixels = 1e7;    // MapX, MapY
+constexpr double kMaxAltitudeM = 20000;  // RelativeAltitude: above any UAV
+constexpr std::size_t kMaxLineBytes = 64 << 10;  // a metadata.csv row is ~250 bytes
+
+std::string number_text(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.6g", v);
+    return buf;
+}
+
+// A stream over text already in memory (no copy).
+struct ViewBuffer : std::streambuf {
+    explicit ViewBuffer(std::string_view s) {
+        char* p = const_cast<char*>(s.data());
+        setg(p, p, p + s.size());
+    }
+};
+
+// A JSON value as an error message shows it: at most kMaxQuotedChars of its text.
+std::string shown(const nlohmann::json& v) { return io::quote_input(v.dump()); }
 
 // Why value v of column c is implausible ("" when it is fine).
 std::string implausible(std::size_t c, double v) {
@@ -92,6 +112,8 @@ std::string implausible(std::size_t c, double v) {
     if (name == "Longitude") return v < -180 || v > 180 ? outside(-180, 180) : "";
     if (name == "MapX" || name == "MapY") return std::fabs(v) > kMaxMapPixels ? outside(-kMaxMapPixels, kMaxMapPixels) : "";
     if (name.rfind("Imu", 0) == 0 || name.rfind("Orientation", 0) == 0) return "";  // see not_unit
+    if (name == "RelativeAltitude" && std::fabs(v) <= kMaxMetres)  // the camera's height gives each frame's scale
+        return v > 0 && v <= kMaxAltitudeM ? "" : name + " " + number_text(v) + " m is not a flight altitude (expected (0, 20000] m)";
     return std::fabs(v) > kMaxMetres ? outside(-kMaxMetres, kMaxMetres) : "";
 }
 
@@ -199,7 +221,7 @@ namespace {
 int int_field(const nlohmann::json& j, const char* key, int lo, int hi, const std::string& where) {
     const nlohmann::json& v = j.at(key);
     if (!v.is_number_integer() || v.get<long long>() < lo || v.get<long long>() > hi)
-        throw Error(where + key + " " + v.dump() + " must be a whole number in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+        throw Error(where + key + " " + shown(v) + " must be a whole number in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
     return static_cast<int>(v.get<long long>());
 }
 
@@ -209,9 +231,9 @@ std::uint64_t uint_field(const nlohmann::json& j, const char* key, std::uint64_t
     if (!j.contains(key)) return 0;
     const nlohmann::json& v = j.at(key);
     if (!v.is_number_unsigned() && !(v.is_number_integer() && v.get<long long>() >= 0))
-        throw Error(where + key + " " + v.dump() + " must be a whole number in [0, " + std::to_string(hi) + "]");
+        throw Error(where + key + " " + shown(v) + " must be a whole number in [0, " + std::to_string(hi) + "]");
     const std::uint64_t u = v.get<std::uint64_t>();
-    if (u > hi) throw Error(where + key + " " + v.dump() + " must be a whole number in [0, " + std::to_string(hi) + "]");
+    if (u > hi) throw Error(where + key + " " + shown(v) + " must be a whole number in [0, " + std::to_string(hi) + "]");
     return u;
 }
 
@@ -225,7 +247,7 @@ double real_field(const nlohmann::json& j, const char* key, double lo, double hi
         char range[96];
         std::snprintf(range, sizeof range, " must be a number in %s%g, %g%s", ends == Ends::closed ? "[" : "(", lo, hi,
                       ends == Ends::open_both ? ")" : "]");
-        throw Error(where + key + " " + v.dump() + range);
+        throw Error(where + key + " " + shown(v) + range);
     }
     return d;
 }
@@ -235,12 +257,12 @@ double real_field(const nlohmann::json& j, const char* key, double lo, double hi
 // Every number is checked against what a flight can have, so a typo (fps 0, hfov 600, a camera of
 // 64000 pixels) is reported here with the file's name instead of as nonsense much later.
 FlightInfo read_flight_info(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw Error(path + ": cannot open");
+    const std::string text = io::read_input_file(path, io::kMaxJsonFileBytes, "flight.json");
+    io::check_json_depth(text, path);  // a 100000-deep [[...]] would overflow the stack in dump()
     FlightInfo info;
     const std::string where = path + ": ";
     try {
-        const nlohmann::json j = nlohmann::json::parse(in);
+        const nlohmann::json j = nlohmann::json::parse(text);
         info.scenario = j.value("scenario", "");
         info.map_file = j.value("map_file", "");
         info.metres_per_pixel = real_field(j, "metres_per_pixel", 0, 1000, Ends::open_low, where);
@@ -257,7 +279,7 @@ FlightInfo read_flight_info(const std::string& path) {
         info.seed = uint_field(j, "seed", std::numeric_limits<std::uint64_t>::max(), where);
         info.frames = static_cast<std::size_t>(uint_field(j, "frames", 100'000'000, where));
     } catch (const nlohmann::json::exception& e) {
-        throw Error(path + ": not a valid flight description (" + e.what() + ")");
+        throw Error(path + ": not a valid flight description (" + io::quote_input(e.what(), 200) + ")");
     }
     info.camera.validate();
     return info;
@@ -303,6 +325,9 @@ AirMetadataParser::AirMetadataParser(std::istream& in, std::string source) : in_
     }
     if (trim(header).empty()) throw Error(source_ + ": empty file, expected a header line with " + kColumns[0] + ",...");
     if (header.rfind("\xEF\xBB\xBF", 0) == 0) header.erase(0, 3);  // UTF-8 byte order mark
+    if (header.size() > kMaxLineBytes)
+        throw Error(source_ + ":" + std::to_string(line_) + ": header of " + std::to_string(header.size()) + " bytes (at most " +
+                    std::to_string(kMaxLineBytes) + "); not a metadata.csv");
     std::vector<std::string> names;
     std::string why;
     if (!split_csv(header, names, why)) throw Error(source_ + ":" + std::to_string(line_) + ": header: " + why);
@@ -326,6 +351,8 @@ bool AirMetadataParser::next(AirRecord& r) {
         ++line_;
         if (trim(text).empty()) continue;
         const std::string at = source_ + ":" + std::to_string(line_) + ": ";
+        if (text.size() > kMaxLineBytes)
+            throw Error(at + "row of " + std::to_string(text.size()) + " bytes (at most " + std::to_string(kMaxLineBytes) + ")");
         std::string why;
         if (!split_csv(text, fields, why)) throw Error(at + why);
         if (fields.size() != field_count_)
@@ -347,7 +374,7 @@ bool AirMetadataParser::next(AirRecord& r) {
             double v = 0;
             const auto [ptr, ec] = std::from_chars(f.data(), f.data() + f.size(), v);
             if (f.empty() || ec != std::errc() || ptr != f.data() + f.size())
-                throw Error(at + kColumns[c] + " '" + f.substr(0, 40) + "' is not a number");
+                throw Error(at + kColumns[c] + " '" + io::quote_input(f, 40) + "' is not a number");
             if (!std::isfinite(v)) throw Error(at + kColumns[c] + " is not finite");
             if (const std::string why = implausible(c, v); !why.empty()) throw Error(at + why);
             *numeric_field(r, c) = v;
@@ -366,10 +393,10 @@ bool AirMetadataParser::next(AirRecord& r) {
 // silently play the flight in the wrong order.
 void AirMetadataParser::check_order(const std::string& filename, const std::string& at) {
     const auto [it, added] = first_line_of_.emplace(filename, line_);
-    if (!added) throw Error(at + filename + " is listed again (first on line " + std::to_string(it->second) + "); rows are duplicated");
+    if (!added) throw Error(at + io::quote_input(filename) + " is listed again (first on line " + std::to_string(it->second) + "); rows are duplicated");
     const std::string number = trailing_number(filename);
     if (!number.empty() && !last_number_.empty() && number_less_or_equal(number, last_number_))
-        throw Error(at + filename + " comes after " + last_filename_ + "; rows must be in frame (time) order");
+        throw Error(at + io::quote_input(filename) + " comes after " + io::quote_input(last_filename_) + "; rows must be in frame (time) order");
     if (!number.empty()) last_number_ = number, last_filename_ = filename;
 }
 
@@ -377,10 +404,19 @@ void AirMetadataParser::check_order(const std::string& filename, const std::stri
 
 AirReader::AirReader(const std::string& folder) : folder_(folder) {
     const std::string path = folder + "/metadata.csv";
-    file_ = std::make_unique<std::ifstream>(path);
-    if (!*file_) throw Error(path + ": cannot open (is " + folder + " an AIR flight folder?)");
-    parser_ = std::make_unique<AirMetadataParser>(*file_, path);
+    // Read whole after the file checks: a FIFO or /dev/zero as metadata.csv is refused at once.
+    try {
+        text_ = io::read_input_file(path, io::kMaxTableFileBytes, "metadata.csv", &identity_);
+    } catch (const Error& e) {
+        const std::string why = e.what();
+        throw Error(why.find(": no such file") != std::string::npos ? path + ": no such file (is " + folder + " an AIR flight folder?)" : why);
+    }
+    buffer_ = std::make_unique<ViewBuffer>(text_);
+    stream_ = std::make_unique<std::istream>(buffer_.get());
+    parser_ = std::make_unique<AirMetadataParser>(*stream_, path);
 }
+
+bool AirReader::unchanged() const { return io::file_identity(folder_ + "/metadata.csv") == identity_; }
 
 bool AirReader::next(AirRecord& r) {
     if (parser_->next(r)) return ++rows_, true;

@@ -141,7 +141,7 @@ TEST_F(CliInput, LocalizeRefusesBrokenAirFoldersNamingFileAndLine) {
         {localize(flight("header_only", {})), "header_only/metadata.csv: no frame rows after the header"},
         {localize(flight("huge_x", {row("frame_000000.png", "200", "1e300")})), "huge_x/metadata.csv:2: MapX 1e+300 is outside"},
         {localize(flight("no_altitude", {row("frame_000000.png", "0")})),
-         "no_altitude/metadata.csv:2 (frame_000000.png): RelativeAltitude 0 m is not a flight altitude"},
+         "no_altitude/metadata.csv:2: RelativeAltitude 0 m is not a flight altitude"},  // the reader's one check (issue 23)
         {localize(flight("off_map", {row("frame_000000.png", "200", "500")})),
          "off_map/metadata.csv:2 (frame_000000.png): the true position MapX,MapY 500,100 is outside the 240x200 px map"},
         {localize(flight("all_missing", {row("gone_000000.png"), row("gone_000001.png")})),

@@ -28,7 +28,14 @@ if command -v parallel >/dev/null; then
   refused "GNU parallel would replace" "$scripts/experiment-parallel" --trnkit "$trnkit" metrics --quick --out "$work/a{}b"
   refused "refused the options" "$scripts/experiment-parallel" --trnkit "$trnkit" no-such-study --out "$work/a"
   refused "--jobs needs a whole number" "$scripts/experiment-parallel" --jobs 0 metrics --out "$work/a"
+  # issue 23: ':::' or '::::' in an option would start a GNU parallel input source (the ids were dropped)
+  refused "input-source separator" "$scripts/experiment-parallel" --trnkit "$trnkit" --jobs 1 heading --quick --backend ':::' --out "$work/a"
+  refused "input-source separator" "$scripts/experiment-parallel" --trnkit "$trnkit" heading --quick --backend '::::' --out "$work/a"
 fi
+# issue 23: --list-jobs and --prepare (what the dispatchers run first) check --backend too
+refused "--backend ':::': unknown backend" "$trnkit" experiment heading --quick --backend ':::' --list-jobs=ids
+refused "--backend 'opencl:': after 'opencl:'" "$trnkit" experiment heading --quick --backend 'opencl:' --prepare --out "$work/b"
+refused "unknown backend" "$trnkit" experiment heading --quick --backend 'nonsense' --list-jobs
 if command -v sbatch >/dev/null; then
   refused "--sbatch needs one sbatch option" "$scripts/experiment-slurm" --sbatch batch metrics --out "$work/a"
   refused "--jobs-per-task needs a whole number" "$scripts/experiment-slurm" --jobs-per-task x metrics --out "$work/a"

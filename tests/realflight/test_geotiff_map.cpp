@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 
 #include "real_air_fixture.hpp"
 #include "trn/error.hpp"
@@ -121,6 +122,32 @@ TEST(GeoTiffMap, RefusesRotatedAndCrsLessFilesNamingThem) {
 }
 
 // Without GDAL a .tif map is an error that says so (this build has GDAL, then this is skipped).
+// Issue 23 finding 7: a "map" that is a VRT (XML naming other files as its pixels) read any file,
+// here a secret outside the dataset, or could connect to a port (/vsicurl/). Only GTiff, PNG and
+// JPEG are opened now, only local regular files, no GDAL virtual paths.
+TEST(GeoTiffMap, VrtAndVirtualPathsAreNotOpened) {
+    SKIP_WITHOUT_GDAL();
+    const std::string secret = temp("secret.raw"), vrt = temp("evil.tif");
+    std::ofstream(secret, std::ios::binary) << std::string(64 * 64, 'S');
+    std::ofstream(vrt) << R"(<VRTDataset rasterXSize="64" rasterYSize="64">
+  <SRS>EPSG:32632</SRS>
+  <GeoTransform>500000, 0.5, 0, 4982950, 0, -0.5</GeoTransform>
+  <VRTRasterBand dataType="Byte" band="1" subClass="VRTRawRasterBand">
+    <SourceFilename relativetoVRT="0">)" << secret << R"(</SourceFilename>
+    <ImageOffset>0</ImageOffset><PixelOffset>1</PixelOffset><LineOffset>64</LineOffset>
+  </VRTRasterBand>
+</VRTDataset>
+)";
+    for (const std::string& path : {vrt, std::string("/vsicurl/http://127.0.0.1:9/map.tif"), "GTIFF_DIR:1:" + vrt}) {
+        try {
+            const trn::io::GeoTiff g = trn::io::read_geotiff(path);
+            ADD_FAILURE() << path << " was read (" << g.image.width << "x" << g.image.height << ", first byte " << int(g.image.pixels[0]) << ")";
+        } catch (const trn::Error& e) {
+            EXPECT_EQ(std::string(e.what()).find(path), 0u) << e.what();
+        }
+    }
+}
+
 TEST(GeoTiffMap, WithoutGdalATifMapIsRefusedNamingTheFile) {
     if (trn::io::geotiff_supported()) GTEST_SKIP() << "this build has GDAL; the refusal applies to builds without it";
     const auto r = run_trnkit("localize --dataset " + testing::TempDir() + " --map " + temp("x.tif") + " --hfov-deg 60 --no-plots");

@@ -164,8 +164,22 @@ TEST_F(LimitFiles, HeaderSizesMatchWhatOpenCvWrites) {
         EXPECT_EQ(size->width, 37) << name;
         EXPECT_EQ(size->height, 23) << name;
     }
+    // Issue 23: the formats OpenCV also reads, so that load_gray refuses what it cannot measure
+    // (JPEG 2000 too, but this OpenCV cannot write it: covered by the header reader's code only).
+    cv::Mat colour_float;
+    colour.convertTo(colour_float, CV_32FC3, 1.0 / 255);
+    for (const char* name : {"a.hdr", "a.pfm", "a.webp", "a.ras", "a.pam"}) {
+        const std::string n = name;
+        ASSERT_TRUE(cv::imwrite(path(name), n == "a.hdr" || n == "a.pfm" ? colour_float : colour)) << name;
+        const auto size = read_image_size(path(name));
+        ASSERT_TRUE(size.has_value()) << name;
+        EXPECT_EQ(size->width, 37) << name;
+        EXPECT_EQ(size->height, 23) << name;
+        EXPECT_NO_THROW(load_gray(path(name))) << name;
+    }
     std::ofstream(path("text.txt")) << "not an image at all";
     EXPECT_FALSE(read_image_size(path("text.txt")).has_value());
+    EXPECT_THROW(load_gray(path("text.txt")), Error);
 }
 
 // The estimates are what the messages quote, so they must be near the truth: within 2x of the peak

@@ -60,6 +60,9 @@ public:
     const std::vector<std::string>& warnings() const { return warnings_; }
     // "folder/metadata.csv:LINE (FILENAME)" of the sample last returned, to give errors a place.
     std::string position() const;
+    // Throws trn::Error naming metadata.csv when the file at its path is no longer the one read
+    // (the dataset was replaced or rewritten meanwhile); next() calls it when the rows end.
+    void check_unchanged() const;
 
 private:
     void check_rows(MapExtent map);

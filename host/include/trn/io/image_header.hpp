@@ -11,12 +11,29 @@ namespace trn {
 
 struct ImageSize {
     std::int64_t width = 0, height = 0;
+    // What OpenCV's decoder takes to read it as 8-bit grey, with the GrayImage copy: bytes per
+    // pixel (2 for 8-bit formats, 16 for Radiance HDR's float RGB buffer ...) plus a fixed part
+    // (a TIFF strip or tile buffer, a WebP file read whole).
+    double decode_bytes_per_pixel = 2;
+    std::uint64_t decode_extra_bytes = 0;
+    const char* format = "";  // "PNG", "Radiance HDR", ...
 };
 
-// Width and height as the header of a PNG, JPEG, BMP, PNM (P1-P6) or TIFF file states them;
-// nullopt for other formats or a header this reader does not understand (OpenCV then reports it).
-// Throws trn::Error naming the file only when it cannot be opened.
+// Most bytes decoding one image file may take (2 GiB: a 2^30-pixel 8-bit map at 2 B/px), whatever
+// its format: a 32768x32768 Radiance HDR (12 B/px of floats) is refused before OpenCV sees it.
+inline constexpr double kMaxImageDecodeBytes = double(std::int64_t(1) << 31);
+
+// Width and height as the header of a PNG, JPEG, BMP, PNM (P1-P6), PAM (P7), PFM, Radiance HDR,
+// TIFF, WebP, JPEG 2000 or Sun raster file states them; nullopt for other formats or a header
+// this reader does not understand. Throws trn::Error naming the file when it cannot be opened
+// or is not a regular file.
 std::optional<ImageSize> read_image_size(const std::string& path);
+
+// Everything load_gray checks before OpenCV opens the file: a regular file (not a FIFO or device)
+// of at most io::kMaxImageFileBytes, in a format whose header read_image_size reads, whose sides,
+// pixels and decode cost are within trn/limits.hpp and kMaxImageDecodeBytes. Throws trn::Error
+// naming the file; returns the header's size.
+ImageSize check_image_file(const std::string& path);
 
 }  // namespace trn
 TRN_API_END

@@ -23,6 +23,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "trn/io/input_file.hpp"
 #include "trn/sim/camera.hpp"
 #include "trn/sim/flight.hpp"
 #include "trn/sim/map.hpp"
@@ -126,10 +127,18 @@ public:
     std::string image_path(const AirRecord& record) const;
     GrayImage load_image(const AirRecord& record) const;
     const std::string& folder() const { return folder_; }
+    // metadata.csv as it was read (whole, at most io::kMaxTableFileBytes); true while the file
+    // at that path is still the one read: a dataset replaced meanwhile (simulate rewriting it)
+    // would pair these rows with other frames.
+    bool unchanged() const;
+    const io::FileIdentity& identity() const { return identity_; }
 
 private:
     std::string folder_;
-    std::unique_ptr<std::ifstream> file_;
+    std::string text_;
+    io::FileIdentity identity_;
+    std::unique_ptr<std::streambuf> buffer_;
+    std::unique_ptr<std::istream> stream_;
     std::unique_ptr<AirMetadataParser> parser_;
     std::size_t rows_ = 0;
 };
