@@ -12,6 +12,7 @@
 #include <system_error>
 
 #include "commands.hpp"
+#include "trn/io/input_file.hpp"
 #include "trn/build_info.hpp"
 #include "trn/error.hpp"
 #include "trn/io/gnuplot.hpp"
@@ -22,25 +23,7 @@ namespace {
 // or an option value is shown escaped (\n, \x1b), so scripts reading stderr line by line see it whole.
 // Past 4096 bytes the rest is cut ("... (N bytes)"): readers quote at most 80 bytes of a field, this
 // catches whatever else would print a 100 KB line.
-std::string one_line(std::string_view text) {
-    constexpr std::size_t kMaxBytes = 4096;
-    const std::size_t full = text.size();
-    if (full > kMaxBytes) text = text.substr(0, kMaxBytes);
-    std::string out;
-    for (const unsigned char c : text) {
-        if (c == '\n') out += "\\n";
-        else if (c == '\r') out += "\\r";
-        else if (c == '\t') out += "\\t";
-        else if (c < 0x20 || c == 0x7f) {
-            static const char hex[] = "0123456789abcdef";
-            out += "\\x";
-            out += hex[c >> 4];
-            out += hex[c & 15];
-        } else out += char(c);
-    }
-    if (full > kMaxBytes) out += "... (" + std::to_string(full) + " bytes)";
-    return out;
-}
+std::string one_line(std::string_view text) { return trn::io::quote_input(text, 4096); }
 
 int run(int argc, char** argv) {
     CLI::App app{"trnkit: terrain-relative navigation kit (particle-filter map matching, Sobel, energy)"};
