@@ -132,8 +132,13 @@ TEST(VulkanMapMemory, StagingHoldsOneBandAtATime) {
     const double bytes = double(w) * h;
     std::cout << "upload_map (staging, 4 bands): grew by " << *growth / 1e6 << " MB for a " << bytes / 1e6 << " MB map\n";
     if (dut->info().type == "cpu") {
-        const double slack = kUnderAddressSanitizer ? kAddressSanitizerRssSlack : 1.0;
-        EXPECT_LT(double(*growth), 1.5 * bytes * slack) << "grew by " << *growth / 1e6 << " MB for a " << bytes / 1e6 << " MB map";
+        // The device copy plus one band's staging (9 MB) fit 1.5x the map. Under ASan the freed
+        // staging bands stay resident in its quarantine (256 MiB by default, far more than these),
+        // so there the three bands freed before the last one are added and its 1/8 shadow on top:
+        // the total is bounded, but the one-band-at-a-time property itself is the Release build's check.
+        double bound = 1.5 * bytes;
+        if (kUnderAddressSanitizer) bound = (bound + 3.0 / 4.0 * dut->map_bytes(w, h)) * kAddressSanitizerRssSlack;
+        EXPECT_LT(double(*growth), bound) << "grew by " << *growth / 1e6 << " MB for a " << bytes / 1e6 << " MB map";
     }
 }
 
