@@ -38,7 +38,9 @@ MapHandle Backend::upload_map(GrayView map, PhaseTimes* times) {
     check_view(map, "upload_map", "map");
     if (map.width < 2 || map.height < 2)
         throw Error("upload_map: map " + size_text(map.width, map.height) + " is smaller than 2x2");
-    limits::check_image("upload_map: map", map.width, map.height, limits::kMaxMapPixels, limits::kMapBytesPerPixel);
+    // The backend's own layout decides the memory (cpu: vertical pixel pairs, 2 B/px; Vulkan quads: 4 B/px).
+    limits::check_image("upload_map: map", map.width, map.height, limits::kMaxMapPixels,
+                        map_bytes(map.width, map.height) / (double(map.width) * double(map.height)));
     if (times) *times = {};
     return do_upload_map(map, times);
 }
@@ -77,7 +79,7 @@ void Backend::sobel(GrayView src, Int16View gx, Int16View gy, PhaseTimes* times)
             throw Error("sobel: output " + size_text(out->width, out->height) + " differs from the source " +
                         size_text(src.width, src.height));
     // Outputs are the caller's, so only the backend's share (a band or a copy of the source) counts here.
-    limits::check_image("sobel: image", src.width, src.height, limits::kMaxMapPixels, limits::kMapBytesPerPixel);
+    limits::check_image("sobel: image", src.width, src.height, limits::kMaxMapPixels, limits::kGrayBytesPerPixel);
     if (times) *times = {};
     do_sobel(src, gx, gy, times);
 }

@@ -5,7 +5,6 @@
 #include "ncc_rows.hpp"
 #include "thread_pool.hpp"
 #include "trn/impl/particle_sums.hpp"
-#include "trn/limits.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -28,9 +27,14 @@ public:
     // The map as vertical pixel pairs (cpu::MapPixels: twice the map's bytes), so that one 32-bit
     // read brings a sample's whole 2x2 cell; kPad spare bytes at the end for the last cell's read.
     static constexpr std::size_t kPad = 16;
+    // Bytes of that layout for a width x height map: two per pixel of every row but the last. The
+    // one definition: the constructor sizes `pairs` with it and upload_map's limit check quotes it.
+    static constexpr double bytes(std::int64_t width, std::int64_t height) {
+        return 2.0 * double(width) * double(height - 1) + double(kPad);
+    }
     CpuMap(const Backend* owner, GrayView v)
         : MapStorage(owner, v.width, v.height), pair_stride(2 * std::ptrdiff_t(v.width)),
-          pairs(std::size_t(pair_stride) * std::size_t(v.height - 1) + kPad, 0) {
+          pairs(static_cast<std::size_t>(bytes(v.width, v.height)), 0) {
         for (int y = 0; y + 1 < v.height; ++y) {
             const std::uint8_t *top = v.row(y), *bottom = v.row(y + 1);
             std::uint8_t* out = pairs.data() + std::size_t(y) * std::size_t(pair_stride);
@@ -87,14 +91,12 @@ public:
 protected:
     MapHandle do_upload_map(GrayView map, PhaseTimes* times) override {
         const auto t0 = Clock::now();
-        // upload_map checked one byte per pixel; the pair layout holds two.
-        limits::check_memory("upload_map: map " + std::to_string(map.width) + "x" + std::to_string(map.height) +
-                                 " as the cpu backend's pixel pairs",
-                             2.0 * double(map.width) * double(map.height));
         auto m = std::make_shared<CpuMap>(this, map);
         if (times) times->upload_ms = ms_since(t0);
         return m;
     }
+
+    double do_map_bytes(std::int64_t width, std::int64_t height) const override { return CpuMap::bytes(width, height); }
 
     void do_score(const MapStorage& storage, const ScoringPlan& plan, std::span<const Pose> poses,
                   std::span<ParticleScore> out, PhaseTimes* times) override {

@@ -16,7 +16,10 @@ namespace {
 
 class RefMap : public MapStorage {
 public:
-    RefMap(const Backend* owner, GrayView v) : MapStorage(owner, v.width, v.height), pixels(std::size_t(v.width) * v.height) {
+    // One byte per pixel, rows packed: the constructor's size and upload_map's estimate.
+    static constexpr double bytes(std::int64_t width, std::int64_t height) { return double(width) * double(height); }
+    RefMap(const Backend* owner, GrayView v)
+        : MapStorage(owner, v.width, v.height), pixels(static_cast<std::size_t>(bytes(v.width, v.height))) {
         for (int y = 0; y < v.height; ++y)
             for (int x = 0; x < v.width; ++x) pixels[std::size_t(y) * v.width + x] = v.at(x, y);
     }
@@ -66,6 +69,8 @@ protected:
         const Timer timer(times ? &times->upload_ms : nullptr);
         return std::make_shared<RefMap>(this, map);
     }
+
+    double do_map_bytes(std::int64_t width, std::int64_t height) const override { return RefMap::bytes(width, height); }
 
     void do_score(const MapStorage& storage, const ScoringPlan& plan, std::span<const Pose> poses,
                   std::span<ParticleScore> out, PhaseTimes* times) override {

@@ -55,6 +55,9 @@ struct UploadEvents {
 
 class OpenClMap : public MapStorage {
 public:
+    // One buffer of packed rows, one byte per pixel: what do_upload_map allocates and upload_map's
+    // limit check quotes (device memory; host memory on CPU devices such as PoCL's).
+    static std::size_t bytes(std::int64_t w, std::int64_t h) { return std::size_t(w) * std::size_t(h); }
     OpenClMap(const Backend* owner, int w, int h, MemHandle mem) : MapStorage(owner, w, h), mem_(std::move(mem)) {}
     cl_mem mem() const { return mem_.get(); }
 
@@ -163,7 +166,7 @@ public:
 
 protected:
     MapHandle do_upload_map(GrayView map, PhaseTimes* times) override {
-        const std::size_t bytes = std::size_t(map.width) * std::size_t(map.height);
+        const std::size_t bytes = OpenClMap::bytes(map.width, map.height);
         const std::string what = "map " + size_text(map.width, map.height) + " (" + std::to_string(bytes >> 20) + " MiB)";
         if (bytes > max_alloc_)
             throw Error("upload_map: " + what + " does not fit in one buffer on " + info_.name + " (" + info_.device +
@@ -183,6 +186,9 @@ protected:
         return std::make_shared<OpenClMap>(this, map.width, map.height, std::move(mem));
     }
 
+    double do_map_bytes(std::int64_t width, std::int64_t height) const override {
+        return double(OpenClMap::bytes(width, height));
+    }
     void do_score(const MapStorage& storage, const ScoringPlan& plan, std::span<const Pose> poses,
                   std::span<ParticleScore> out, PhaseTimes* times) override;
     void do_sobel(GrayView src, Int16View gx, Int16View gy, PhaseTimes* times) override;

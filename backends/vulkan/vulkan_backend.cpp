@@ -129,30 +129,59 @@ void VulkanBackend::barrier_after_download() {
                            VK_ACCESS_HOST_READ_BIT);
 }
 
+MapLayout map_layout(std::size_t w, std::size_t h, const MapPlacement& placement, bool quad_maps) {
+    MapLayout layout;
+    layout.width = w, layout.height = h;
+    const std::size_t max_bytes = placement.band_bytes, max_quads = placement.band_quads;
+    // Quads: H-1 quad rows of W words, no overlap; only while they fit the quad budget.
+    const std::size_t quad_rows_per_band = max_quads / w;
+    layout.quads = quad_maps && 4 * w * (h - 1) <= placement.quad_budget && quad_rows_per_band > 0 &&
+                   (h - 1 + quad_rows_per_band - 1) / quad_rows_per_band <= kMaxMapChunks;
+    layout.rows_per_chunk = layout.quads ? std::min(h - 1, quad_rows_per_band) : h;
+    layout.chunk_count = 1;
+    if (layout.quads) {
+        layout.chunk_count = (h - 1 + layout.rows_per_chunk - 1) / layout.rows_per_chunk;
+    } else if (layout.band_bytes(h) > max_bytes) {
+        if (max_bytes / w < 3) {
+            layout.rows_too_wide = true;
+            return layout;
+        }
+        layout.rows_per_chunk = max_bytes / w - 1;  // plus one overlap row
+        layout.chunk_count = (h - 2) / layout.rows_per_chunk + 1;
+    }
+    return layout;
+}
+
+std::size_t MapLayout::band_rows(std::size_t c) const {
+    const std::size_t first = c * rows_per_chunk;
+    return quads ? std::min(rows_per_chunk, height - 1 - first) : std::min(rows_per_chunk + 1, height - first);
+}
+
+std::size_t MapLayout::band_bytes(std::size_t rows) const {
+    return quads ? rows * width * 4 : (rows * width + 3) & ~std::size_t(3);
+}
+
+double MapLayout::bytes() const {
+    if (rows_too_wide || chunk_count > kMaxMapChunks)  // refused anyway; the pixels once, as a figure for the message
+        return double(width) * double(height);
+    double total = 0;
+    for (std::size_t c = 0; c < chunk_count; ++c) total += double(band_bytes(band_rows(c)));
+    return total;
+}
+
 MapHandle VulkanBackend::do_upload_map(GrayView map, PhaseTimes* times) {
     Context& ctx = *context_;
     const std::size_t w = static_cast<std::size_t>(map.width), h = static_cast<std::size_t>(map.height);
-    const std::size_t max_bytes = map_placement_.band_bytes, max_quads = map_placement_.band_quads;
     auto handle = std::make_shared<VulkanMap>(this, context_, map.width, map.height);
-
-    // Quads: H-1 quad rows of W words, no overlap; only while they fit the quad budget.
-    const std::size_t quad_rows_per_band = max_quads / w;
-    const bool quads = quad_maps_ && 4 * w * (h - 1) <= map_placement_.quad_budget && quad_rows_per_band > 0 &&
-                       (h - 1 + quad_rows_per_band - 1) / quad_rows_per_band <= kMaxMapChunks;
-    auto band_bytes = [&](std::size_t rows) { return quads ? rows * w * 4 : (rows * w + 3) & ~std::size_t(3); };
-    std::size_t rows_per_chunk = quads ? std::min(h - 1, quad_rows_per_band) : h, chunk_count = 1;
-    if (quads) {
-        chunk_count = (h - 1 + rows_per_chunk - 1) / rows_per_chunk;
-    } else if (band_bytes(h) > max_bytes) {
-        if (max_bytes / w < 3)
-            throw Error("upload_map: map rows of " + std::to_string(w) + " pixels are too wide for " + info_.name);
-        rows_per_chunk = max_bytes / w - 1;  // plus one overlap row
-        chunk_count = (h - 2) / rows_per_chunk + 1;
-        if (chunk_count > kMaxMapChunks)
-            throw Error("upload_map: map " + std::to_string(w) + "x" + std::to_string(h) + " needs " +
-                        std::to_string(chunk_count) + " bands of " + std::to_string(max_bytes) + " bytes on " + info_.name +
-                        " (maxStorageBufferRange); at most " + std::to_string(kMaxMapChunks) + " are supported");
-    }
+    const MapLayout layout = map_layout(w, h, map_placement_, quad_maps_);
+    const bool quads = layout.quads;
+    const std::size_t rows_per_chunk = layout.rows_per_chunk, chunk_count = layout.chunk_count;
+    if (layout.rows_too_wide)
+        throw Error("upload_map: map rows of " + std::to_string(w) + " pixels are too wide for " + info_.name);
+    if (chunk_count > kMaxMapChunks)
+        throw Error("upload_map: map " + std::to_string(w) + "x" + std::to_string(h) + " needs " +
+                    std::to_string(chunk_count) + " bands of " + std::to_string(map_placement_.band_bytes) + " bytes on " +
+                    info_.name + " (maxStorageBufferRange); at most " + std::to_string(kMaxMapChunks) + " are supported");
     handle->rows_per_chunk = static_cast<std::uint32_t>(rows_per_chunk);
     handle->quads = quads;
 
@@ -162,10 +191,10 @@ MapHandle VulkanBackend::do_upload_map(GrayView map, PhaseTimes* times) {
     for (std::size_t c = 0; c < chunk_count; ++c) {
         const auto t0 = Clock::now();
         const std::size_t first = c * rows_per_chunk;
-        const std::size_t rows = quads ? std::min(rows_per_chunk, h - 1 - first) : std::min(rows_per_chunk + 1, h - first);
+        const std::size_t rows = layout.band_rows(c);
         auto chunk = std::make_unique<Mirror>(ctx, "a map band", quads ? VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT
                                                                       : VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-        chunk->ensure(band_bytes(rows));
+        chunk->ensure(layout.band_bytes(rows));
         if (quads) {
             auto* dst = static_cast<std::uint32_t*>(chunk->host());
             for (std::size_t y = 0; y < rows; ++y) {
@@ -184,13 +213,13 @@ MapHandle VulkanBackend::do_upload_map(GrayView map, PhaseTimes* times) {
         host_ms += ms_since(t0);
         VkCommandBuffer cmd = recorder_->begin();
         recorder_->mark(0);
-        chunk->record_upload(cmd, band_bytes(rows));
+        chunk->record_upload(cmd, layout.band_bytes(rows));
         recorder_->mark(1);
         barrier_after_upload();
         recorder_->submit_and_wait("vkQueueSubmit (map upload)");
         chunk->drop_staging();
         device_ms += recorder_->elapsed_ms(0, 1);
-        if (quads) handle->views.push_back(std::make_unique<TexelView>(ctx, chunk->device(), VK_FORMAT_R32_UINT, band_bytes(rows)));
+        if (quads) handle->views.push_back(std::make_unique<TexelView>(ctx, chunk->device(), VK_FORMAT_R32_UINT, layout.band_bytes(rows)));
         handle->chunks.push_back(std::move(chunk));
     }
     if (times) times->upload_ms = host_ms + device_ms;

@@ -31,6 +31,26 @@ struct MapPlacement {
     std::size_t band_bytes = 0;                // bytes per band (maxStorageBufferRange, <= 1 GiB, multiple of 4)
 };
 
+// The layout one map gets (map_layout below): quads or bytes, its bands and the bytes they take.
+// do_upload_map allocates exactly band_bytes(band_rows(c)) for each band c and upload_map's limit
+// check quotes bytes(), so the estimate is the layout's own arithmetic.
+struct MapLayout {
+    std::size_t width = 0, height = 0;
+    bool quads = false;
+    std::size_t rows_per_chunk = 0, chunk_count = 0;
+    bool rows_too_wide = false;  // bytes layout: a band holds fewer than 3 rows (do_upload_map refuses)
+    // Rows of band c: quad rows (no overlap) or pixel rows (one row of overlap with the next band).
+    std::size_t band_rows(std::size_t c) const;
+    // Bytes of a band of `rows`: a 32-bit word per quad, or four pixels to a word.
+    std::size_t band_bytes(std::size_t rows) const;
+    // Bytes of every band together.
+    double bytes() const;
+};
+// Quads only while they fit the placement's quad budget in at most kMaxMapChunks bands (and
+// quad_maps is on); otherwise bytes, in bands of at most placement.band_bytes. Throws nothing:
+// chunk_count may exceed kMaxMapChunks, which do_upload_map refuses by name.
+MapLayout map_layout(std::size_t width, std::size_t height, const MapPlacement& placement, bool quad_maps);
+
 // A map on the device as up to kMaxMapChunks row bands (layouts in ncc_score.comp). Quad layout:
 // uniform texel buffers (R32_UINT) with a word per pixel holding its 2x2 bilinear footprint, band
 // c holds quad rows [c*R, c*R + R), each band within maxTexelBufferElements. Bytes layout (when
@@ -58,6 +78,9 @@ public:
 
 protected:
     MapHandle do_upload_map(GrayView map, PhaseTimes* times) override;
+    double do_map_bytes(std::int64_t width, std::int64_t height) const override {
+        return map_layout(std::size_t(width), std::size_t(height), map_placement_, quad_maps_).bytes();
+    }
     void do_score(const MapStorage& map, const ScoringPlan& plan, std::span<const Pose> poses,
                   std::span<ParticleScore> out, PhaseTimes* times) override;
     void do_sobel(GrayView src, Int16View gx, Int16View gy, PhaseTimes* times) override;

@@ -440,12 +440,12 @@ void ProceduralMapOptions::validate() const {
     limits::check_image(std::string("procedural map ") + size + ": image",
                         static_cast<std::int64_t>(std::llround(std::min(w, side))),
                         static_cast<std::int64_t>(std::llround(std::min(h, side))), limits::kMaxMapPixels,
-                        limits::kMapBytesPerPixel);
+                        limits::kGrayBytesPerPixel);
 }
 
 GrayImage generate_procedural_region(const ProceduralMapOptions& options, int x0, int y0, int w, int h) {
     options.validate();
-    limits::check_image("procedural region", w, h, limits::kMaxMapPixels, limits::kMapBytesPerPixel);
+    limits::check_image("procedural region", w, h, limits::kMaxMapPixels, limits::kGrayBytesPerPixel);
     const double mpp = options.metres_per_pixel;
     const Scene scene(options, x0 * mpp, y0 * mpp, (x0 + w) * mpp, (y0 + h) * mpp);
     GrayImage img{w, h, std::vector<std::uint8_t>(std::size_t(w) * h)};

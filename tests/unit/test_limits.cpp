@@ -1,6 +1,6 @@
 // Resource limits (trn/limits.hpp): every size just over its limit fails at once with a message
 // naming the input, the size, the need and the limit, before any large allocation; the memory
-// estimates behind the messages match what the process really uses, within a factor of two.
+// estimates behind the messages match what the process really uses, within 25 %.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -11,6 +11,7 @@
 #include <iostream>
 #include <memory>
 #include <sstream>
+#include <utility>
 #include <vector>
 
 #include <opencv2/imgcodecs.hpp>
@@ -83,10 +84,12 @@ TEST(Limits, MemoryBeyondHalfOfPhysicalIsRefused) {
 
 TEST(Limits, UploadMapJustOverTheLimitFailsAtOnce) {
     const std::uint8_t pixel = 0;  // never read: the size is refused first
-    for (const char* name : {"cpu-ref", "cpu"}) {
+    // The need quoted is the backend's own layout: cpu-ref one byte per pixel, cpu vertical pixel pairs.
+    for (const auto& [name, need] : {std::pair{"cpu-ref", "~1.1 GB"}, std::pair{"cpu", "~2.1 GB"}}) {
         auto backend = default_registry().create(name);
         const std::string over_pixels = fast_error([&] { backend->upload_map({&pixel, 32768, 32769, 32768}); });
-        EXPECT_HAS(over_pixels, "upload_map: map 32768x32769 needs ~1.1 GB (limit 1073741824 pixels, e.g. 32768x32768)");
+        EXPECT_HAS(over_pixels, std::string("upload_map: map 32768x32769 needs ") + need +
+                                    " (limit 1073741824 pixels, e.g. 32768x32768)");
         const std::string over_side = fast_error([&] { backend->upload_map({&pixel, 65537, 2, 65537}); });
         EXPECT_HAS(over_side, "upload_map: map 65537x2 is too large: its sides may be at most 65536 pixels");
     }
@@ -182,28 +185,39 @@ TEST_F(LimitFiles, HeaderSizesMatchWhatOpenCvWrites) {
     EXPECT_THROW(load_gray(path("text.txt")), Error);
 }
 
-// The estimates are what the messages quote, so they must be near the truth: within 2x of the peak
-// memory the operation really adds (8 Mpx, big enough to dwarf allocator noise).
-TEST_F(LimitFiles, MemoryEstimatesAreRightWithinAFactorOfTwo) {
+// The estimates are what the messages quote, so they must be near the truth: within 25 % of the
+// peak memory the operation really adds (8 Mpx, big enough to dwarf allocator noise). Every backend
+// of this build is measured; OpenCL and Vulkan on CPU devices (PoCL, lavapipe) keep the map in host
+// memory, so the process's RSS sees their copy too (GPU devices: skipped, their copy is not ours).
+// Under ASan (redzones, quarantine) only the bound above the estimate is loosened (kRssSlack).
+TEST_F(LimitFiles, MemoryEstimatesAreRightWithin25Percent) {
     const int w = 4096, h = 2048;
     const double px = double(w) * h;
+    constexpr double kTolerance = 0.25;
+    const double slack = test::kUnderAddressSanitizer ? test::kAddressSanitizerRssSlack : 1.0;
     ASSERT_TRUE(cv::imwrite(path("big.pgm"), test::textured_image(w, h, 5).mat()));
 
     GrayImage loaded;
     const auto load = test::peak_rss_growth([&] { loaded = load_gray(path("big.pgm")); });
     if (!load) GTEST_SKIP() << "this kernel cannot reset the peak RSS (/proc/self/clear_refs)";
     std::cout << "load_gray: " << double(*load) / px << " B/px measured, " << limits::kLoadBytesPerPixel << " estimated\n";
-    EXPECT_GT(double(*load), limits::kLoadBytesPerPixel * px / 2);
-    EXPECT_LT(double(*load), limits::kLoadBytesPerPixel * px * 2);
+    EXPECT_GT(double(*load), limits::kLoadBytesPerPixel * px * (1 - kTolerance));
+    EXPECT_LT(double(*load), limits::kLoadBytesPerPixel * px * (1 + kTolerance) * slack);
 
-    for (const char* name : {"cpu-ref", "cpu"}) {
+    std::vector<std::string> names;
+    for (const FamilyStatus& family : default_registry().status())
+        for (const DeviceInfo& device : family.devices)
+            if (device.type == "cpu") names.push_back(device.name);
+    for (const std::string& name : names) {
         auto backend = default_registry().create(name);
+        const double estimate = backend->map_bytes(w, h);
         MapHandle map;
         const auto upload = test::peak_rss_growth([&] { map = backend->upload_map(loaded.view()); });
-        std::cout << name << " upload_map: " << double(*upload) / px << " B/px measured, " << limits::kMapBytesPerPixel
+        ASSERT_TRUE(upload);
+        std::cout << name << " upload_map: " << double(*upload) / px << " B/px measured, " << estimate / px
                   << " estimated\n";
-        EXPECT_GT(double(*upload), limits::kMapBytesPerPixel * px / 2) << name;
-        EXPECT_LT(double(*upload), limits::kMapBytesPerPixel * px * 2) << name;
+        EXPECT_GT(double(*upload), estimate * (1 - kTolerance)) << name;
+        EXPECT_LT(double(*upload), estimate * (1 + kTolerance) * slack) << name;
     }
 }
 

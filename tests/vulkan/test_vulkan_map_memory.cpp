@@ -2,6 +2,7 @@
 // the quad budget, bytes (1 B/px) beyond; band splitting in both layouts (reached with small maps
 // by lowering the band sizes); on staging devices at most one band's staging copy at a time.
 #include <cstdint>
+#include <iostream>
 #include <vector>
 
 #include "peak_rss.hpp"
@@ -76,21 +77,41 @@ TEST(VulkanMapLayout, MapsSplitIntoBandsMatchReference) {
     }
 }
 
+// The estimate upload_map checks and quotes (Backend::map_bytes) is the layout's own size.
+TEST(VulkanMapLayout, MapBytesFollowTheLayout) {
+    TRN_REQUIRE_VULKAN();
+    auto dut = default_registry().create("vulkan", env_options());
+    EXPECT_EQ(dut->map_bytes(301, 207), 4.0 * 301 * 206);         // quads: a word per 2x2 footprint
+    EXPECT_EQ(dut->map_bytes(9000, 8000), 9000.0 * 8000);         // beyond the quad budget: bytes
+    vk::MapPlacement p = as_vulkan(*dut).map_placement();
+    p.quad_budget = 0;
+    p.band_bytes = (std::size_t(301) * 40 + 1) & ~std::size_t(3);  // 39 rows + 1 overlap: 6 bands
+    as_vulkan(*dut).set_map_placement(p);
+    const PaddedGray map = textured_image(301, 207, 75);
+    const MapHandle bytes = dut->upload_map(map.view());
+    ASSERT_EQ(as_vulkan(bytes).chunks.size(), 6u);
+    // Five overlap rows more than the map, each band rounded up to whole words.
+    EXPECT_EQ(dut->map_bytes(301, 207), 5 * double((301 * 40 + 3) & ~3) + double((301 * 12 + 3) & ~3));
+}
+
 // 72 Mpx: its quads (288 MB) exceed the budget, so the device copy is the bytes layout (72 MB);
-// on lavapipe device memory is host memory, so the process grows by about that.
+// on lavapipe device memory is host memory, so the process grows by about the estimate.
 TEST(VulkanMapMemory, LargeMapTakesAboutOneBytePerPixel) {
     TRN_REQUIRE_VULKAN();
     auto dut = default_registry().create("vulkan", env_options());
     const int w = 9000, h = 8000;
     const std::vector<std::uint8_t> px = plain_map(w, h);
+    const double estimate = dut->map_bytes(w, h);
     MapHandle map;
     const auto growth = peak_rss_growth([&] { map = dut->upload_map({px.data(), w, h, w}); });
     if (!growth) GTEST_SKIP() << "this kernel cannot reset the peak RSS (/proc/self/clear_refs)";
     EXPECT_FALSE(as_vulkan(map).quads);
-    const double bytes = double(w) * h;
+    std::cout << "upload_map: grew by " << *growth / 1e6 << " MB, estimate " << estimate / 1e6 << " MB\n";
     if (dut->info().type == "cpu") {  // elsewhere the map lives in device memory
-        EXPECT_GT(double(*growth), 0.5 * bytes);
-        EXPECT_LT(double(*growth), 2.0 * bytes) << "grew by " << *growth / 1e6 << " MB for a " << bytes / 1e6 << " MB map";
+        const double slack = kUnderAddressSanitizer ? kAddressSanitizerRssSlack : 1.0;
+        EXPECT_GT(double(*growth), 0.75 * estimate);
+        EXPECT_LT(double(*growth), 1.25 * estimate * slack)
+            << "grew by " << *growth / 1e6 << " MB for a " << estimate / 1e6 << " MB map";
     }
 }
 
@@ -108,10 +129,16 @@ TEST(VulkanMapMemory, StagingHoldsOneBandAtATime) {
     const auto growth = peak_rss_growth([&] { map = dut->upload_map({px.data(), w, h, w}); });
     if (!growth) GTEST_SKIP() << "this kernel cannot reset the peak RSS (/proc/self/clear_refs)";
     EXPECT_EQ(as_vulkan(map).chunks.size(), 4u);
-    if (kUnderAddressSanitizer) GTEST_SKIP() << "RSS bound not checked under AddressSanitizer (its allocator pads and quarantines)";
     const double bytes = double(w) * h;
+    std::cout << "upload_map (staging, 4 bands): grew by " << *growth / 1e6 << " MB for a " << bytes / 1e6 << " MB map\n";
     if (dut->info().type == "cpu") {
-        EXPECT_LT(double(*growth), 1.5 * bytes) << "grew by " << *growth / 1e6 << " MB for a " << bytes / 1e6 << " MB map";
+        // The device copy plus one band's staging (9 MB) fit 1.5x the map. Under ASan the freed
+        // staging bands stay resident in its quarantine (256 MiB by default, far more than these),
+        // so there the three bands freed before the last one are added and its 1/8 shadow on top:
+        // the total is bounded, but the one-band-at-a-time property itself is the Release build's check.
+        double bound = 1.5 * bytes;
+        if (kUnderAddressSanitizer) bound = (bound + 3.0 / 4.0 * dut->map_bytes(w, h)) * kAddressSanitizerRssSlack;
+        EXPECT_LT(double(*growth), bound) << "grew by " << *growth / 1e6 << " MB for a " << bytes / 1e6 << " MB map";
     }
 }
 

@@ -7,6 +7,7 @@
 // cv::Sobel(src, CV_16S, 1, 0 / 0, 1, 3) with BORDER_REFLECT_101.
 // A backend object is not thread-safe: use one per thread. Repeated calls with the same inputs
 // return bit-identical results.
+#include <cstdint>
 #include <memory>
 #include <span>
 #include <string>
@@ -55,6 +56,11 @@ public:
     // pixels with sides up to kMaxImageSide (65536); a device may refuse less, naming its limit.
     MapHandle upload_map(GrayView map, PhaseTimes* times = nullptr);
 
+    // Bytes this backend's copy of a width x height map takes, in the layout it really uses (its
+    // device memory for GPUs, host memory for CPU devices): what upload_map checks against half of
+    // physical memory and quotes in its messages. Arithmetic only: any positive size, nothing allocated.
+    double map_bytes(std::int64_t width, std::int64_t height) const { return do_map_bytes(width, height); }
+
     // Scores every pose against the plan's template; out.size() must be >= poses.size() and
     // only the first poses.size() entries are written.
     void score(const MapHandle& map, const ScoringPlan& plan, std::span<const Pose> poses,
@@ -68,6 +74,8 @@ public:
 
 protected:
     virtual MapHandle do_upload_map(GrayView map, PhaseTimes* times) = 0;
+    // Defined beside the backend's map layout, from the same arithmetic that sizes its allocation.
+    virtual double do_map_bytes(std::int64_t width, std::int64_t height) const = 0;
     virtual void do_score(const MapStorage& map, const ScoringPlan& plan, std::span<const Pose> poses,
                           std::span<ParticleScore> out, PhaseTimes* times) = 0;
     virtual void do_sobel(GrayView src, Int16View gx, Int16View gy, PhaseTimes* times) = 0;

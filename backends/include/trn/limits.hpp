@@ -34,8 +34,10 @@ inline constexpr std::int64_t kMaxTemplatePixels = std::int64_t(1) << 24;
 inline constexpr std::int64_t kMaxParticles = std::int64_t(1) << 22;
 
 // Memory each unit takes while it is being processed (the estimates behind the messages below).
+// A backend's copy of an uploaded map is not here: each backend's layout defines its own
+// (Backend::map_bytes; cpu-ref and OpenCL 1 B/px, cpu 2 B/px, Vulkan 4 B/px as quads or 1 B/px).
 inline constexpr double kLoadBytesPerPixel = 2;       // OpenCV's decoded image + the GrayImage copy
-inline constexpr double kMapBytesPerPixel = 1;        // a backend's own copy of an uploaded map
+inline constexpr double kGrayBytesPerPixel = 1;       // an 8-bit image held once (a generated map, a Sobel source's copy)
 inline constexpr double kSobelBytesPerPixel = 5;      // 8-bit source + int16 gx and gy
 inline constexpr double kTemplateBytesPerPixel = 24;  // double working value, float value, sample point, index
 inline constexpr double kParticleBytes = 128;         // pose, affine, device sums, score
