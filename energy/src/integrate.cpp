@@ -14,6 +14,18 @@ double interpolate(const PowerTrace& tr, std::size_t i, double t) {  // t in [t[
     return tr.w[i - 1] + f * (tr.w[i] - tr.w[i - 1]);
 }
 
+// The most the integral over [x, y] of a power that stays between w[i-1] and w[i] (anywhere,
+// stepping at any time) can differ from the linear interpolation's, for [x, y] inside the sample
+// interval [a, b]: |dw| x max of the areas above and below the interpolation's rising share,
+// A = int (t-a)/h and B = (y-x) - A. A whole interval gives |dw| h / 2 (the old bound, |dw| x the
+// covered length, was twice that); a frame edge at the interval's end side gives |dw| L^2/(2h).
+double piece_bound(double dw, double a, double b, double x, double y) {
+    const double h = b - a;
+    if (!(h > 0)) return 0;
+    const double A = ((y - a) * (y - a) - (x - a) * (x - a)) / (2 * h), B = (y - x) - A;
+    return std::abs(dw) * std::max(A, B);
+}
+
 // Both rules over [s, e] of an instant trace; requires t0 <= s <= e <= tN.
 void instant_rules(const PowerTrace& tr, double s, double e, double& trap, double& hold, double* abs_diff = nullptr) {
     trap = hold = 0;
@@ -25,14 +37,14 @@ void instant_rules(const PowerTrace& tr, double s, double e, double& trap, doubl
     double t_prev = s, p_prev = interpolate(tr, i, s), held = tr.w[i - 1];
     while (i < tr.size() && tr.t[i] < e) {
         const double tz = 0.5 * (p_prev + tr.w[i]) * (tr.t[i] - t_prev), hz = held * (tr.t[i] - t_prev);
-        trap += tz, hold += hz, diff += std::abs(tr.w[i] - tr.w[i - 1]) * (tr.t[i] - t_prev);
+        trap += tz, hold += hz, diff += piece_bound(tr.w[i] - tr.w[i - 1], tr.t[i - 1], tr.t[i], t_prev, tr.t[i]);
         t_prev = tr.t[i], p_prev = tr.w[i], held = tr.w[i];
         ++i;
     }
     const std::size_t k = std::min(i, tr.size() - 1);
     const double p_end = interpolate(tr, k, e);
     const double tz = 0.5 * (p_prev + p_end) * (e - t_prev), hz = held * (e - t_prev);
-    trap += tz, hold += hz, diff += std::abs(tr.w[k] - tr.w[k - 1]) * (e - t_prev);
+    trap += tz, hold += hz, diff += piece_bound(tr.w[k] - tr.w[k - 1], tr.t[k - 1], tr.t[k], t_prev, e);
     if (abs_diff) *abs_diff = diff;
 }
 
@@ -72,9 +84,25 @@ void mean_rules(const PowerTrace& tr, double t_begin, double s, double e, double
 // with its time axis moved by at most d (piecewise linearly, knot by knot), so at each instant
 // the two differ by at most the curve's variation within +-d of it; integrated over [s, e] that
 // is at most 2 d x the total variation of the samples over [s - d, e + d].
+// With a measured spread instead (time_sd_s = sigma, errors independent between samples): moving
+// sample k by dk changes the trapezoid by dk (w[k-1] - w[k+1]) / 2, so the energy error has SD
+// sigma x sqrt(sum ((w[k+1] - w[k-1]) / 2)^2) over the samples that shape [s, e]; the term is 2 SD
+// (95 % for a normal error, more for the bounded, flatter sums of a few uniform lags).
 double timing_error(const PowerTrace& tr, double s, double e) {
+    if (tr.size() < 2) return 0;
+    if (tr.time_sd_s > 0) {
+        std::size_t k = static_cast<std::size_t>(std::upper_bound(tr.t.begin(), tr.t.end(), s) - tr.t.begin());
+        k = k == 0 ? 0 : k - 1;  // the last sample at or before s
+        double sum2 = 0;
+        for (; k < tr.size(); ++k) {
+            const double before = tr.w[k == 0 ? 0 : k - 1], after = tr.w[k + 1 < tr.size() ? k + 1 : k];
+            sum2 += 0.25 * (after - before) * (after - before);
+            if (tr.t[k] >= e) break;  // the first sample at or after e is the last that matters
+        }
+        return 2 * tr.time_sd_s * std::sqrt(sum2);
+    }
     const double d = tr.time_uncertainty_s;
-    if (!(d > 0) || tr.size() < 2) return 0;
+    if (!(d > 0)) return 0;
     std::size_t k = static_cast<std::size_t>(std::upper_bound(tr.t.begin(), tr.t.end(), s - d) - tr.t.begin());
     k = k == 0 ? 0 : k - 1;
     double variation = 0;

@@ -20,8 +20,11 @@ ParseOptions parse_option_list(const std::vector<std::string>& items) {
 }
 
 std::vector<std::string> power_log_formats() {
-    return {"ina219-csv", "ina219-tuples", "ina219-raw", "nvidia-smi", "tegrastats", "pmt", "rapl-tools",
-            "perf-stat", "hwmon-records", "powerstat", "turbostat", "trnkit"};
+    return {
+#define TRN_POWER_FORMAT(name, parser, ...) name,
+#include "power_formats.def"
+#undef TRN_POWER_FORMAT
+    };
 }
 
 namespace {
@@ -54,20 +57,23 @@ std::string detect_power_log_format(std::string_view input, const std::string& n
         if (text::lower(s).rfind("time_s,shunt,bus", 0) == 0) return "ina219-raw";
         break;
     }
-    if (l.find("timestamp") != std::string_view::npos && l.find("power.draw") != std::string_view::npos) return "nvidia-smi";
+    if (l.find("power.draw") != std::string_view::npos) return "nvidia-smi";  // with or without a timestamp column
     if (looks_like_headerless_nvidia_smi(l)) return "nvidia-smi";
     if (text::starts_with(l, "timestamp ") && l.find(',') == std::string_view::npos) return "pmt";
     if (l.front() == '(') return "ina219-tuples";
     if (text::starts_with(l, "Timestamp:")) return "hwmon-records";
-    const std::size_t probe = std::min<std::size_t>(lines.size(), 50);
+    if (text::starts_with(text::lower(l), "date,cpu utilization")) return "powerjoular";
+    if (text::starts_with(l, "turbostat version")) return "turbostat";
+    const std::size_t probe = std::min<std::size_t>(lines.size(), 400);
     for (std::size_t i = first; i < probe; ++i) {
         const auto s = lines[i].text;
-        if (s.find("RAM ") != std::string_view::npos &&
+        if (i < first + 50 && s.find("RAM ") != std::string_view::npos &&
             (s.find("VDD_") != std::string_view::npos || s.find("POM_") != std::string_view::npos || s.find("VIN_") != std::string_view::npos))
             return "tegrastats";
-        if (s.find(",Joules,") != std::string_view::npos) return "perf-stat";
+        if (i < first + 50 && (s.find(",Joules,") != std::string_view::npos || s.find(";Joules;") != std::string_view::npos)) return "perf-stat";
         const auto tok = text::split_ws(s);
-        if (!tok.empty() && tok.front() == "Time" && std::find(tok.begin(), tok.end(), "Watts") != tok.end()) return "powerstat";
+        if (i < first + 50 && tok.size() >= 4 && text::to_number(tok[0]) && tok[2] == "Joules") return "perf-stat";  // perf stat -I text
+        if (i < first + 50 && !tok.empty() && tok.front() == "Time" && std::find(tok.begin(), tok.end(), "Watts") != tok.end()) return "powerstat";
         for (auto t : tok)
             if (t == "PkgWatt" || t == "CorWatt" || t == "RAMWatt" || t == "SysWatt") return "turbostat";
     }
@@ -80,7 +86,18 @@ std::string detect_power_log_format(std::string_view input, const std::string& n
     bool all_numbers = fields.size() == 5;
     for (auto f : fields) all_numbers = all_numbers && text::to_number(f).has_value();
     if (all_numbers) return "rapl-tools";
-    if (fields.size() >= 2) return "ina219-csv";
+    // A logger CSV: ',', ';' or tab separated, or a space-aligned table whose next line has about
+    // as many fields and a number.
+    for (char sep : {',', ';', '\t'})
+        if (text::split(l, sep).size() >= 2) return "ina219-csv";
+    const auto head = text::split_ws(l);
+    std::size_t next = first + 1;
+    while (next < lines.size() && (text::trim(lines[next].text).empty() || text::trim(lines[next].text).front() == '#')) ++next;
+    if (head.size() >= 2 && next < lines.size()) {
+        const auto row = text::split_ws(lines[next].text);
+        const bool numeric = std::any_of(row.begin(), row.end(), [](std::string_view v) { return text::to_number(v).has_value(); });
+        if (numeric && (row.size() == head.size() || row.size() == head.size() + 1)) return "ina219-csv";
+    }
     text::fail(name, lines[first].number, "unrecognised power log (first line '" + std::string(l.substr(0, 80)) +
                                               "'); name the format with --format (" + "see trnkit energy formats)");
 }
@@ -89,18 +106,10 @@ namespace {
 
 PowerTrace parse_in_format(std::string_view input, const std::string& name, const std::string& format, const ParseOptions& options) {
     const std::string f = format == "auto" ? detect_power_log_format(input, name) : format;
-    if (f == "ina219-csv") return parse_ina219_csv(input, name, options);
-    if (f == "ina219-tuples") return parse_ina219_tuples(input, name, options);
-    if (f == "ina219-raw") return parse_ina219_raw(input, name, options);
-    if (f == "nvidia-smi") return parse_nvidia_smi(input, name, options);
-    if (f == "tegrastats") return parse_tegrastats(input, name, options);
-    if (f == "pmt") return parse_pmt(input, name, options);
-    if (f == "rapl-tools") return parse_rapl_tools_csv(input, name, options);
-    if (f == "perf-stat") return parse_perf_stat(input, name, options);
-    if (f == "hwmon-records") return parse_hwmon_records(input, name, options);
-    if (f == "powerstat") return parse_powerstat(input, name, options);
-    if (f == "turbostat") return parse_turbostat(input, name, options);
-    if (f == "trnkit") return parse_trnkit_power(input, name, options);
+#define TRN_POWER_FORMAT(format_name, parser, ...) \
+    if (f == format_name) return parser(input, name, options);
+#include "power_formats.def"
+#undef TRN_POWER_FORMAT
     std::string list;
     for (const auto& n : power_log_formats()) list += (list.empty() ? "" : ", ") + n;
     throw Error("--format '" + format + "': unknown (known: auto, " + list + ")");
@@ -125,6 +134,7 @@ PowerTrace parse_power_log(std::string_view input, const std::string& name, cons
     if (zone) apply_time_zone(tr, *zone);
     if (uncertainty) {
         tr.time_uncertainty_s = *uncertainty;
+        tr.time_sd_s = 0;  // a stated worst case replaces the parser's measured spread
         tr.settings["time_uncertainty_s"] = options.at("time_uncertainty_s");
         tr.notes.push_back("sample times uncertain by +-" + options.at("time_uncertainty_s") + " s (time_uncertainty_s): included in the error bounds");
     }

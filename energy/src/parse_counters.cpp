@@ -3,6 +3,7 @@
 #include <cctype>
 #include <cmath>
 #include <map>
+#include <regex>
 #include <cstdio>
 #include <sstream>
 
@@ -14,13 +15,14 @@ namespace trn::energy {
 
 PowerTrace parse_rapl_tools_csv(std::string_view input, const std::string& name, const ParseOptions& options) {
     const std::string parser = name + " (rapl-tools)";
-    OptionReader o(options, parser, {"domain"});
+    OptionReader o(options, parser, {"domain", "max_power_w"});
     const std::string domain = o.text("domain", "pkg");
     const std::vector<std::string> domains = {"pkg", "pp0", "pp1", "dram"};
     const auto it = std::find(domains.begin(), domains.end(), domain);
     if (it == domains.end()) throw Error(parser + ": domain must be pkg, pp0, pp1 or dram");
     const int cw = static_cast<int>(it - domains.begin());
     TraceBuilder b(name, "rapl-tools");
+    b.power_source("cpu", o);
     b.trace().quantity = domain + " (RAPL, mean over each interval)";
     b.trace().kind = SampleKind::IntervalMean;
     b.trace().first_interval_start = 0.0;  // elapsed time counts from the meter's start
@@ -50,29 +52,105 @@ double parse_rapl_tools_total_energy(std::string_view input, const std::string& 
     throw Error(name + ": no 'Total Energy:' line (not a rapl-tools power.log summary)");
 }
 
+// `perf stat -I MS -e power/energy-pkg/[,power/energy-ram/]` with -x SEP (CSV) or perf's own
+// aligned text ("     1.001048308              19.63 Joules power/energy-pkg/"). One row per
+// event and interval; event= picks one of several, event=sum adds them per interval.
 PowerTrace parse_perf_stat(std::string_view input, const std::string& name, const ParseOptions& options) {
-    OptionReader o(options, name + " (perf-stat)", {});
+    const std::string parser = name + " (perf-stat)";
+    OptionReader o(options, parser, {"event", "max_power_w"});
     TraceBuilder b(name, "perf-stat");
+    b.power_source("cpu", o);
     b.trace().kind = SampleKind::IntervalMean;
     b.trace().first_interval_start = 0.0;  // -I times count from the start of perf stat
-    double prev = 0;
-    std::string event;
+    struct Row { std::size_t line; double t; std::optional<double> j; std::string event; };
+    std::vector<Row> rows;
+    std::vector<std::string> events;
+    // "1,234.56" (thousands separators in perf's text output) -> 1234.56
+    auto count_value = [](const std::string& v) -> std::optional<double> {
+        if (auto n = text::to_number(v)) return n;
+        static const std::regex grouped(R"(^[0-9]{1,3}(,[0-9]{3})+(\.[0-9]+)?$)");
+        if (!std::regex_match(v, grouped)) return std::nullopt;
+        std::string plain;
+        for (char c : v)
+            if (c != ',') plain += c;
+        return text::to_number(plain);
+    };
     for (const auto& l : text::split_lines(input)) {
         const auto s = text::trim(l.text);
         if (s.empty() || s.front() == '#') continue;
-        const auto f = text::split(s, ',');
-        if (f.size() < 4) text::fail(name, l.number, "expected 'time,value,unit,event,...' (perf stat -x, -I)");
+        std::vector<std::string> f;
+        for (char sep : {',', ';'}) {
+            const auto parts = text::split(s, sep);
+            if (parts.size() >= 4 && text::to_number(parts[0])) {
+                for (auto p : parts) f.emplace_back(text::trim(p));
+                break;
+            }
+        }
+        if (f.empty()) {  // perf's aligned text: time value unit event [...]
+            auto tok = text::split_ws(s);
+            std::vector<std::string> t2;
+            for (std::size_t i = 0; i < tok.size(); ++i) {
+                if (tok[i] == "<not" && i + 1 < tok.size()) t2.push_back(std::string(tok[i]) + " " + std::string(tok[i + 1])), ++i;
+                else t2.emplace_back(tok[i]);
+            }
+            f = std::move(t2);
+        }
+        if (f.size() < 4) text::fail(name, l.number, "expected 'time,value,unit,event,...' (perf stat -x, -I) or 'time value Joules event' (perf stat -I)");
         const auto t = text::to_number(f[0]);
-        const auto j = text::to_number(f[1]);
-        if (!t || !j) text::fail(name, l.number, "time and value must be numbers (counter '" + std::string(f[1]) + "')");
-        if (f[2] != "Joules") text::fail(name, l.number, "unit '" + std::string(f[2]) + "' is not Joules: not an energy event");
-        if (event.empty()) event = std::string(f[3]);
-        else if (event != f[3]) text::fail(name, l.number, "a second event '" + std::string(f[3]) + "': log one energy event per file");
-        if (!(*t > prev)) text::fail(name, l.number, "interval end does not come after the previous one");
-        b.add(l.number, *t, *j / (*t - prev));
-        prev = *t;
+        if (!t) text::fail(name, l.number, "interval time '" + f[0] + "' is not a number");
+        std::optional<double> j;
+        if (f[1].rfind("<not", 0) == 0) {
+            b.drop(l.number, "event " + f[1] + " in this interval");
+        } else {
+            j = count_value(f[1]);
+            if (!j) text::fail(name, l.number, "value '" + f[1] + "' is not a number");
+            if (f[2] != "Joules") text::fail(name, l.number, "unit '" + f[2] + "' is not Joules: not an energy event");
+        }
+        if (std::find(events.begin(), events.end(), f[3]) == events.end()) events.push_back(f[3]);
+        rows.push_back({l.number, *t, j, f[3]});
     }
-    b.trace().quantity = event + " (joules per interval / interval)";
+    const std::string want = o.text("event", "");
+    auto matches = [](const std::string& event, const std::string& wanted) {
+        return event == wanted || event == "power/" + wanted + "/" || event == wanted + "/";
+    };
+    if (events.size() > 1 && want.empty()) {
+        std::string list;
+        for (const auto& e : events) list += (list.empty() ? "" : ", ") + e;
+        throw Error(parser + ": " + std::to_string(events.size()) + " energy events in the log (" + list +
+                    "): pass event=NAME for one or event=sum for their sum; none is picked silently");
+    }
+    if (!want.empty() && want != "sum" && std::none_of(events.begin(), events.end(), [&](const std::string& e) { return matches(e, want); }))
+        throw Error(parser + ": event='" + want + "' is not in the log");
+    double prev = 0;
+    std::string quantity = want == "sum" ? "sum of " : "";
+    if (want == "sum") {
+        for (const auto& e : events) quantity += e + (e == events.back() ? "" : "+");
+    } else {
+        quantity = want.empty() ? (events.empty() ? "" : events.front()) : want;
+    }
+    for (std::size_t i = 0; i < rows.size();) {
+        // the rows of one interval (same time)
+        std::size_t k = i;
+        double joules = 0;
+        std::size_t seen = 0;
+        bool missing = false;
+        while (k < rows.size() && rows[k].t == rows[i].t) {
+            if (want == "sum" || want.empty() || matches(rows[k].event, want)) {
+                ++seen;
+                if (rows[k].j) joules += *rows[k].j;
+                else missing = true;
+            }
+            ++k;
+        }
+        const Row& r = rows[i];
+        if (!(r.t > prev)) text::fail(name, r.line, "interval end does not come after the previous one");
+        if (want == "sum" && seen != events.size())
+            text::fail(name, r.line, "interval at " + std::to_string(r.t) + " s lacks one of the " + std::to_string(events.size()) + " events: cannot sum");
+        if (seen && !missing) b.add(r.line, r.t, joules / (r.t - prev));
+        if (seen) prev = r.t;
+        i = k;
+    }
+    b.trace().quantity = quantity + " (joules per interval / interval)";
     b.trace().resolution_w = 0.01;  // perf prints joules with two decimals
     b.note("perf prints joules rounded to 0.01 J per interval");
     return b.finish();
@@ -109,10 +187,11 @@ std::optional<double> parse_date_output(std::string_view s) {
 }  // namespace
 
 PowerTrace parse_hwmon_records(std::string_view input, const std::string& name, const ParseOptions& options) {
-    OptionReader o(options, name + " (hwmon-records)", {"channel"});
+    OptionReader o(options, name + " (hwmon-records)", {"channel", "max_power_w"});
     const std::string ch = o.text("channel", "1");
     const std::string curr_key = "curr" + ch + "_input:", volt_key = "in" + ch + "_input:";
     TraceBuilder b(name, "hwmon-records");
+    b.power_source("rail", o);
     b.trace().quantity = "in" + ch + "_input (mV) x curr" + ch + "_input (mA)";
     b.trace().wall_clock = true;
     b.trace().resolution_w = 1e-3;
@@ -153,10 +232,11 @@ PowerTrace parse_hwmon_records(std::string_view input, const std::string& name, 
 }
 
 PowerTrace parse_trnkit_power(std::string_view input, const std::string& name, const ParseOptions& options) {
-    OptionReader o(options, name + " (trnkit)", {});
+    OptionReader o(options, name + " (trnkit)", {"source", "max_power_w"});
     const auto lines = text::split_lines(input);
     if (lines.empty() || !text::starts_with(lines[0].text, "# trnkit-power v1")) text::fail(name, 1, "expected '# trnkit-power v1 ...'");
     TraceBuilder b(name, "trnkit");
+    b.power_source(o.text("source", "node"), o);
     for (auto tok : text::split_ws(lines[0].text.substr(17))) {
         const auto eq = tok.find('=');
         if (eq == std::string_view::npos) text::fail(name, 1, "header token '" + std::string(tok) + "' is not key=value");

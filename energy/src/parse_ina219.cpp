@@ -1,7 +1,10 @@
 // INA219 logs: engineering-unit CSV, Arduino Python-tuple lines, and raw registers.
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <functional>
+#include <map>
 
 #include "option_reader.hpp"
 #include "trace_builder.hpp"
@@ -18,28 +21,78 @@ bool is_comment(std::string_view l) {
     return l.empty() || l.front() == '#';
 }
 
+// The separator of a logger CSV: the one of ',', ';' and tab the header holds most often
+// (ties in that order), else runs of spaces (an aligned table). 0 means whitespace.
 char detect_delimiter(std::string_view line) {
-    for (char c : {',', ';', '\t'})
-        if (line.find(c) != std::string_view::npos) return c;
-    return ',';
+    char best = 0;
+    std::size_t most = 0;
+    for (char c : {',', ';', '\t'}) {
+        const auto n = static_cast<std::size_t>(std::count(line.begin(), line.end(), c));
+        if (n > most) most = n, best = c;
+    }
+    return best;
 }
 
-// Unit scale read from a column name's suffix ("current_mA", "power [W]", "bus(V)").
+// Fields of one row: double-quoted fields keep their separators ("30,3"), "" is a quote.
+std::vector<std::string> split_fields(std::string_view line, char delim) {
+    std::vector<std::string> out;
+    if (delim == 0) {
+        for (auto f : text::split_ws(line)) out.emplace_back(f);
+        return out;
+    }
+    std::string cur;
+    bool quoted = false;
+    for (std::size_t i = 0; i < line.size(); ++i) {
+        const char c = line[i];
+        if (quoted) {
+            if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') cur += '"', ++i;
+            else if (c == '"') quoted = false;
+            else cur += c;
+        } else if (c == '"' && text::trim(cur).empty()) {
+            cur.clear(), quoted = true;
+        } else if (c == delim) {
+            out.push_back(std::string(text::trim(cur))), cur.clear();
+        } else {
+            cur += c;
+        }
+    }
+    out.push_back(std::string(text::trim(cur)));
+    return out;
+}
+
+// "30,3" / "-0,25": a number written with a decimal comma (one comma, digits on both sides).
+bool decimal_comma_number(std::string_view f) {
+    f = text::trim(f);
+    const auto c = f.find(',');
+    if (c == std::string_view::npos || f.find(',', c + 1) != std::string_view::npos || f.find('.') != std::string_view::npos) return false;
+    std::string dotted(f);
+    dotted[c] = '.';
+    return c > 0 && c + 1 < f.size() && std::isdigit(static_cast<unsigned char>(f[c - 1])) && std::isdigit(static_cast<unsigned char>(f[c + 1])) &&
+           text::to_number(dotted).has_value();
+}
+
+// Unit scale read from a column name ("current_mA", "power [W]", "bus(V)", "total_watts").
 std::optional<double> unit_scale_from_name(const std::string& name) {
     const std::string n = text::lower(name);
+    for (const auto& [word, scale] : std::vector<std::pair<std::string, double>>{
+             {"milliwatts", 1e-3}, {"milliwatt", 1e-3}, {"kilowatts", 1e3}, {"kilowatt", 1e3}, {"watts", 1}, {"watt", 1}})
+        if (n.find(word) != std::string::npos) return scale;
     for (const auto& [suffix, scale] : std::vector<std::pair<std::string, double>>{
-             {"mv", 1e-3}, {"uv", 1e-6}, {"ma", 1e-3}, {"ua", 1e-6}, {"mw", 1e-3}, {"uw", 1e-6}, {"v", 1}, {"a", 1}, {"w", 1}}) {
-        for (const std::string& wrap : {"_" + suffix, "[" + suffix + "]", "(" + suffix + ")", " " + suffix})
+             {"mv", 1e-3}, {"uv", 1e-6}, {"ma", 1e-3}, {"ua", 1e-6}, {"mw", 1e-3}, {"uw", 1e-6}, {"kw", 1e3}, {"v", 1}, {"a", 1}, {"w", 1}}) {
+        for (const std::string& wrap : {"_" + suffix, "[" + suffix + "]", "(" + suffix + ")", " " + suffix, "/" + suffix})
             if (n.size() >= wrap.size() && n.compare(n.size() - wrap.size(), wrap.size(), wrap) == 0) return scale;
+        // a unit in brackets before more text: "power (W) avg"
+        for (const std::string& wrap : {"[" + suffix + "]", "(" + suffix + ")"})
+            if (n.find(wrap) != std::string::npos) return scale;
     }
     return std::nullopt;
 }
 
 double unit_scale(const std::string& unit, const std::string& option, const std::string& parser) {
     static const std::map<std::string, double> scales = {{"v", 1}, {"mv", 1e-3}, {"uv", 1e-6}, {"a", 1}, {"ma", 1e-3},
-                                                         {"ua", 1e-6}, {"w", 1}, {"mw", 1e-3}, {"uw", 1e-6}};
+                                                         {"ua", 1e-6}, {"w", 1}, {"mw", 1e-3}, {"uw", 1e-6}, {"kw", 1e3}};
     const auto it = scales.find(text::lower(unit));
-    if (it == scales.end()) throw Error(parser + ": option " + option + "='" + unit + "' is not a unit (V, mV, A, mA, W, mW ...)");
+    if (it == scales.end()) throw Error(parser + ": option " + option + "='" + unit + "' is not a unit (V, mV, A, mA, W, mW, kW ...)");
     return it->second;
 }
 
@@ -64,28 +117,89 @@ double median_step(const std::vector<double>& t) {
 PowerTrace parse_ina219_csv(std::string_view input, const std::string& name, const ParseOptions& options) {
     const std::string parser = name + " (ina219-csv)";
     OptionReader o(options, parser, {"columns", "time", "bus_v", "shunt_v", "current", "power", "time_unit", "period_s",
-                                     "bus_v_unit", "current_unit", "power_unit", "use"});
+                                     "bus_v_unit", "current_unit", "power_unit", "use", "source", "max_power_w"});
     const auto lines = text::split_lines(input);
     std::size_t first = 0;
     while (first < lines.size() && is_comment(lines[first].text)) ++first;
     if (first == lines.size()) throw Error(parser + ": no data lines");
     const char delim = detect_delimiter(lines[first].text);
+    const std::string delim_name = delim == ',' ? "','" : delim == ';' ? "';'" : delim == '\t' ? "tab" : "spaces";
 
     std::vector<std::string> names;
     std::size_t data_start = first;
     if (const auto cols = o.text("columns")) {
         for (auto c : text::split(*cols, ',')) names.emplace_back(text::trim(c));
     } else {
-        const auto fields = text::split(lines[first].text, delim);
-        const bool header = std::none_of(fields.begin(), fields.end(), [](std::string_view f) {
-            return text::to_number(f) || text::parse_datetime(f);
+        const auto fields = split_fields(lines[first].text, delim);
+        const bool header = std::none_of(fields.begin(), fields.end(), [](const std::string& f) {
+            return text::to_number(f) || text::parse_datetime(f) || decimal_comma_number(f);
         });
         if (!header)
             text::fail(name, lines[first].number,
                        "no header row naming the columns; pass columns=... (e.g. columns=index,sensor,bus_V,current_mA,power_W)");
-        for (auto f : fields) names.emplace_back(text::trim(f));
+        names = fields;
         data_start = first + 1;
     }
+    const std::size_t ncols = names.size();
+
+    // Rows as fields. Decimal commas: under ';', tab or spaces a field "30,3" is 30.3 (refused
+    // when '.' decimals appear too); under ',' they split every value in two, which is repaired
+    // only when every row has exactly twice the header's fields, else refused (never truncated).
+    struct Row { std::size_t line; std::vector<std::string> f; };
+    std::vector<Row> rows;
+    std::size_t comma_fields = 0, dot_fields = 0, first_comma = 0, first_dot = 0;
+    bool all_double = true;
+    std::size_t first_mismatch = 0, mismatch_count = 0;
+    for (std::size_t li = data_start; li < lines.size(); ++li) {
+        const Line& l = lines[li];
+        if (is_comment(l.text)) continue;
+        Row r{l.number, split_fields(l.text, delim)};
+        while (r.f.size() > ncols && r.f.back().empty()) r.f.pop_back();  // trailing separators
+        // "2024-03-12 10:00:01" split by an aligned-space separator: one field again.
+        if (delim == 0 && r.f.size() == ncols + 1)
+            for (std::size_t i = 0; i + 1 < r.f.size(); ++i)
+                if (!text::parse_datetime(r.f[i]) && text::parse_datetime(r.f[i] + " " + r.f[i + 1])) {
+                    r.f[i] += " " + r.f[i + 1];
+                    r.f.erase(r.f.begin() + static_cast<std::ptrdiff_t>(i) + 1);
+                    break;
+                }
+        all_double = all_double && r.f.size() == 2 * ncols;
+        if (r.f.size() > ncols && mismatch_count++ == 0) first_mismatch = l.number;
+        for (const auto& f : r.f) {
+            if (decimal_comma_number(f) && comma_fields++ == 0) first_comma = l.number;
+            else if (f.find('.') != std::string::npos && text::to_number(f) && dot_fields++ == 0) first_dot = l.number;
+        }
+        rows.push_back(std::move(r));
+    }
+    bool decimal_commas = false;
+    if (mismatch_count) {
+        if (delim == ',' && all_double && !rows.empty()) {
+            for (auto& r : rows) {
+                std::vector<std::string> joined;
+                for (std::size_t i = 0; i < ncols; ++i) joined.push_back(r.f[2 * i] + "." + r.f[2 * i + 1]);
+                r.f = std::move(joined);
+            }
+            decimal_commas = true;
+        } else {
+            const Row& bad = *std::find_if(rows.begin(), rows.end(), [&](const Row& r) { return r.line == first_mismatch; });
+            text::fail(name, first_mismatch,
+                       std::to_string(bad.f.size()) + " fields, but the header names " + std::to_string(ncols) + " (separator " + delim_name +
+                           ")" + (delim == ',' ? ": decimal commas under a ',' separator (a comma-decimal locale)? re-export with ';' as the separator or '.' decimals"
+                                               : ": columns= names them"));
+        }
+    } else if (comma_fields) {
+        if (delim == ',')
+            text::fail(name, first_comma, "a quoted number with a decimal comma under a ',' separator; re-export with '.' decimals or ';' as the separator");
+        if (dot_fields)
+            text::fail(name, std::max(first_comma, first_dot),
+                       "numbers with decimal commas (line " + std::to_string(first_comma) + ") and with decimal points (line " + std::to_string(first_dot) +
+                           "): one locale per file");
+        for (auto& r : rows)
+            for (auto& f : r.f)
+                if (decimal_comma_number(f)) f[f.find(',')] = '.';
+        decimal_commas = true;
+    }
+
     auto find = [&](const std::string& option, const std::function<bool(const std::string&)>& match) {
         Column c;
         if (const auto wanted = o.text(option)) {
@@ -100,57 +214,162 @@ PowerTrace parse_ina219_csv(std::string_view input, const std::string& name, con
         return c;
     };
     auto has = [](const std::string& s, const char* w) { return s.find(w) != std::string::npos; };
-    Column time = find("time", [&](const std::string& n) { return has(n, "time") || n == "t" || has(n, "elapsed") || n == "index" || n == "idx"; });
+    auto energy_like = [&](const std::string& n) { return has(n, "energy") || has(n, "wh") || has(n, "joule") || has(n, "cumulative"); };
+    auto power_like = [&](const std::string& n) {
+        if (energy_like(n)) return false;
+        const bool gpu_n = n.size() >= 4 && n.compare(0, 3, "gpu") == 0 && std::isdigit(static_cast<unsigned char>(n[3]));
+        return has(n, "power") || has(n, "watt") || has(n, "leistung") || n == "p" || n == "w" || n == "mw" || gpu_n;
+    };
+    Column time = find("time", [&](const std::string& n) {
+        return has(n, "time") || n == "t" || has(n, "elapsed") || n == "index" || n == "idx" || has(n, "zeit");
+    });
+    if (time.index < 0) time = find("time", [&](const std::string& n) { return n == "date" || n == "datum"; });
+    // A separate date column before a time-of-day one ("Date;Time;Power [W]").
+    int date_col = -1;
+    for (std::size_t i = 0; i < names.size(); ++i)
+        if (static_cast<int>(i) != time.index && (text::lower(names[i]) == "date" || text::lower(names[i]) == "datum")) date_col = static_cast<int>(i);
     Column shunt = find("shunt_v", [&](const std::string& n) { return has(n, "shunt"); });
-    Column power = find("power", [&](const std::string& n) { return has(n, "power") || n == "p" || n == "w" || n == "mw"; });
+    std::vector<Column> powers;
+    const std::string power_option = o.text("power", "");
+    if (!power_option.empty() && power_option != "sum") {
+        powers.push_back(find("power", [](const std::string&) { return false; }));
+    } else {
+        for (std::size_t i = 0; i < names.size(); ++i)
+            if (static_cast<int>(i) != time.index && power_like(text::lower(names[i]))) powers.push_back({static_cast<int>(i), 1, names[i]});
+    }
     Column current = find("current", [&](const std::string& n) {
-        return (has(n, "current") || n == "i" || n == "ma" || n == "a" || n == "i_ma" || n == "current_ma") && !has(n, "shunt");
+        return (has(n, "current") || has(n, "strom") || n == "i" || n == "ma" || n == "a" || n == "i_ma" || n == "current_ma") && !has(n, "shunt");
     });
     Column bus = find("bus_v", [&](const std::string& n) {
-        return (has(n, "bus") || has(n, "volt") || n == "v" || n == "v_bus") && !has(n, "shunt");
+        return (has(n, "bus") || has(n, "volt") || has(n, "spannung") || n == "v" || n == "u" || n == "v_bus") && !has(n, "shunt");
     });
     if (time.index < 0) throw Error(parser + ": no time column among '" + std::string(lines[first].text.substr(0, 200)) + "'; pass time=NAME");
-    auto set_scale = [&](Column& c, const std::string& unit_option, double fallback) {
-        if (c.index < 0) return;
-        if (const auto u = o.text(unit_option)) c.scale = unit_scale(*u, unit_option, parser);
-        else c.scale = unit_scale_from_name(c.name).value_or(fallback);
-    };
-    set_scale(bus, "bus_v_unit", 1.0);
-    set_scale(current, "current_unit", 1e-3);  // INA219 libraries report mA
-    set_scale(power, "power_unit", 1e-3);      // ... and mW
     const std::string use = o.text("use", "vi");
     if (use != "vi" && use != "power") throw Error(parser + ": option use must be vi or power");
-    const bool vi = bus.index >= 0 && current.index >= 0 && !(use == "power" && power.index >= 0);
-    if (!vi && power.index < 0) throw Error(parser + ": needs a power column or bus voltage and current columns");
+    const bool vi = bus.index >= 0 && current.index >= 0 && !(use == "power" && !powers.empty());
+    if (!vi && powers.empty()) throw Error(parser + ": needs a power column or bus voltage and current columns");
+    if (!vi && powers.size() > 1 && power_option != "sum") {
+        std::string list;
+        for (const auto& p : powers) list += (list.empty() ? "'" : ", '") + p.name + "'";
+        throw Error(parser + ": " + std::to_string(powers.size()) + " power columns (" + list +
+                    "): pass power=NAME for one of them or power=sum for their sum; none is picked silently");
+    }
+    if (vi || power_option != "sum") powers.resize(1);
+
+    auto number_at = [&](const Row& r, const Column& c) -> std::optional<double> {
+        if (c.index < 0 || static_cast<std::size_t>(c.index) >= r.f.size()) return std::nullopt;
+        return text::to_number(r.f[c.index]);
+    };
+    auto median_of = [](std::vector<double> v) {
+        if (v.empty()) return 0.0;
+        std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+        return v[v.size() / 2];
+    };
+    std::vector<std::string> unit_notes;
+    // Units: from the option, else the column name; never a silent default.
+    auto scale_of = [&](Column& c, const std::string& unit_option) -> bool {
+        if (c.index < 0) return true;
+        if (const auto u = o.text(unit_option)) c.scale = unit_scale(*u, unit_option, parser);
+        else if (const auto s = unit_scale_from_name(c.name)) c.scale = *s;
+        else return false;
+        return true;
+    };
+    if (!scale_of(bus, "bus_v_unit")) {
+        std::vector<double> v;
+        for (const auto& r : rows)
+            if (const auto x = number_at(r, bus)) v.push_back(std::abs(*x));
+        const double top = v.empty() ? 0 : *std::max_element(v.begin(), v.end());
+        if (top > 60)
+            throw Error(parser + ": bus voltage column '" + bus.name + "' has no unit in its name and reaches " + std::to_string(top) +
+                        " (mV? no INA bus reaches 60 V); pass bus_v_unit=V or mV");
+        unit_notes.push_back("bus voltage column '" + bus.name + "' has no unit in its name: V (its values stay within 60)");
+    }
+    bool current_known = scale_of(current, "current_unit");
+    for (auto& p : powers) {
+        if (scale_of(p, "power_unit")) continue;
+        // Unit from the ratio to V x I where both exist (current in a known unit).
+        if (bus.index >= 0 && current.index >= 0 && current_known) {
+            std::vector<double> ratio;
+            for (const auto& r : rows) {
+                const auto v = number_at(r, bus), i = number_at(r, current), w = number_at(r, p);
+                if (v && i && w && std::abs(*v * bus.scale * *i * current.scale) > 1e-3) ratio.push_back(*w / (*v * bus.scale * *i * current.scale));
+            }
+            const double m = median_of(ratio);
+            for (const auto& [unit, scale] : std::vector<std::pair<const char*, double>>{{"W", 1}, {"mW", 1e-3}, {"kW", 1e3}})
+                if (m * scale > 0.8 && m * scale < 1.25) {
+                    p.scale = scale;
+                    char buf[200];
+                    std::snprintf(buf, sizeof buf, "power column '%s' has no unit in its name: %s, from its ratio to V x I (median %.4g)", p.name.c_str(), unit, m);
+                    unit_notes.push_back(buf);
+                    break;
+                }
+            if (p.scale != 1 || (m > 0.8 && m < 1.25)) continue;
+        }
+        if (vi) { p.index = -1; continue; }  // only a cross-check; V x I is integrated
+        throw Error(parser + ": power column '" + p.name + "' has no unit in its name (W? mW?); pass power_unit=W, mW or kW");
+    }
+    if (!current_known) {
+        if (!powers.empty() && powers[0].index >= 0 && (o.text("power_unit") || unit_scale_from_name(powers[0].name)) && bus.index >= 0) {
+            std::vector<double> ratio;
+            for (const auto& r : rows) {
+                const auto v = number_at(r, bus), i = number_at(r, current), w = number_at(r, powers[0]);
+                if (v && i && w && std::abs(*w * powers[0].scale) > 1e-3) ratio.push_back(*v * bus.scale * *i / (*w * powers[0].scale));
+            }
+            const double m = median_of(ratio);
+            for (const auto& [unit, scale] : std::vector<std::pair<const char*, double>>{{"A", 1}, {"mA", 1e-3}})
+                if (m * scale > 0.8 && m * scale < 1.25) {
+                    current.scale = scale, current_known = true;
+                    char buf[200];
+                    std::snprintf(buf, sizeof buf, "current column '%s' has no unit in its name: %s, from V x I against power column '%s' (median ratio %.4g)",
+                                  current.name.c_str(), unit, powers[0].name.c_str(), m);
+                    unit_notes.push_back(buf);
+                }
+        }
+        if (!current_known && vi)
+            throw Error(parser + ": current column '" + current.name + "' has no unit in its name (A? mA?); pass current_unit=A or mA");
+    }
 
     std::string time_unit = o.text("time_unit", "");
     const std::string tname = text::lower(time.name);
     if (time_unit.empty()) {
         if (tname == "index" || tname == "idx") time_unit = "index";
-        else if (has(tname, "_ms") || has(tname, "[ms]")) time_unit = "ms";
-        else if (has(tname, "_us") || has(tname, "[us]")) time_unit = "us";
+        else if (has(tname, "_ms") || has(tname, "[ms]") || has(tname, "(ms)")) time_unit = "ms";
+        else if (has(tname, "_us") || has(tname, "[us]") || has(tname, "(us)")) time_unit = "us";
         else time_unit = "auto";  // seconds or ISO date, decided by the first row
     }
     const double period = o.number("period_s", 0);
     if (time_unit == "index" && !(period > 0)) throw Error(parser + ": time column '" + time.name + "' is a row index; pass period_s=SECONDS");
 
     TraceBuilder b(name, "ina219-csv");
-    b.trace().quantity = vi ? bus.name + "*" + current.name : power.name;
+    std::vector<double> bus_values;
+    if (vi)
+        for (const auto& r : rows)
+            if (const auto v = number_at(r, bus)) bus_values.push_back(std::abs(*v * bus.scale));
+    const std::string source = o.text("source", vi && median_of(bus_values) <= 60 ? "rail" : "node");
+    b.power_source(source, o);
+    for (auto& n : unit_notes) b.note(std::move(n));
+    if (decimal_commas)
+        b.note(delim == ',' ? "decimal commas under a ',' separator: every row has twice the header's fields, read as value pairs 'int,frac'"
+                            : "decimal commas (a comma-decimal locale, separator " + delim_name + ") read as decimal points");
+    std::string quantity;
+    if (vi) quantity = bus.name + "*" + current.name;
+    else
+        for (const auto& p : powers) quantity += (quantity.empty() ? "" : "+") + p.name;
+    b.trace().quantity = quantity;
     std::size_t bad = 0, first_bad = 0;
     std::vector<double> vi_ratio;
     bool zone_known = true;
-    for (std::size_t li = data_start; li < lines.size(); ++li) {
-        const Line& l = lines[li];
-        if (is_comment(l.text)) continue;
-        const auto f = text::split(l.text, delim);
+    for (const Row& r : rows) {
+        const auto& f = r.f;
         auto get = [&](const Column& c) -> std::optional<double> {
-            if (c.index < 0 || static_cast<std::size_t>(c.index) >= f.size()) return std::nullopt;
-            const auto v = text::to_number(f[c.index]);
+            const auto v = number_at(r, c);
             return v ? std::optional<double>(*v * c.scale) : std::nullopt;
         };
         std::optional<double> t;
         if (static_cast<std::size_t>(time.index) < f.size()) {
-            const std::string_view tf = f[time.index];
+            std::string tf = f[time.index];
+            if (date_col >= 0 && static_cast<std::size_t>(date_col) < f.size() && !text::parse_datetime(tf) && !text::to_number(tf))
+                tf = f[date_col] + " " + tf;
             if (time_unit == "auto") {
                 if (auto n = text::to_number(tf)) t = n;
                 else if (auto d = text::parse_datetime(tf, &zone_known)) { t = d; b.trace().wall_clock = true; }
@@ -164,28 +383,36 @@ PowerTrace parse_ina219_csv(std::string_view input, const std::string& name, con
         if (vi) {
             const auto v = get(bus), i = get(current);
             if (v && i) w = *v * *i;
-            if (const auto p = get(power); w && p && std::abs(*w) > 1e-3) vi_ratio.push_back(*p / *w);
+            if (const auto p = get(powers[0]); w && p && std::abs(*w) > 1e-3) vi_ratio.push_back(*p / *w);
         } else {
-            w = get(power);
+            double sum = 0;
+            bool ok = true;
+            for (const auto& p : powers) {
+                const auto x = get(p);
+                ok = ok && x.has_value();
+                if (x) sum += *x;
+            }
+            if (ok) w = sum;
         }
         if (!t || !w) {
-            if (bad++ == 0) first_bad = l.number;
-            b.drop(l.number, "missing or unreadable time/power fields");
+            if (bad++ == 0) first_bad = r.line;
+            b.drop(r.line, "missing or unreadable time/power fields");
             continue;
         }
-        b.add(l.number, *t, *w);
+        b.add(r.line, *t, *w);
     }
-    if (bad * 2 > lines.size() - data_start && bad > 0)
+    if (bad * 2 > rows.size() && bad > 0)
         text::fail(name, first_bad, "most rows are unreadable (" + std::to_string(bad) + "); check columns/delimiter");
     if (!vi_ratio.empty()) {
         std::nth_element(vi_ratio.begin(), vi_ratio.begin() + vi_ratio.size() / 2, vi_ratio.end());
         const double r = vi_ratio[vi_ratio.size() / 2];
         if (r < 0.5 || r > 2) {
             char buf[200];
-            std::snprintf(buf, sizeof buf, "power column '%s' is %.4g x bus*current (median): a logger unit bug? using V*I", power.name.c_str(), r);
+            std::snprintf(buf, sizeof buf, "power column '%s' is %.4g x bus*current (median): a logger unit bug? using V*I", powers[0].name.c_str(), r);
             b.note(buf);
         }
     }
+    if (powers.size() > 1) b.note("power is the sum of " + std::to_string(powers.size()) + " columns (power=sum): " + quantity);
     b.trace().local_time = b.trace().wall_clock && !zone_known;
     if (b.trace().local_time) b.note("time stamps have no time zone; taken as UTC (--timezone/--utc-offset to convert)");
     if (!b.trace().w.empty() && *std::min_element(b.trace().w.begin(), b.trace().w.end()) < 0)
@@ -195,13 +422,14 @@ PowerTrace parse_ina219_csv(std::string_view input, const std::string& name, con
 
 PowerTrace parse_ina219_tuples(std::string_view input, const std::string& name, const ParseOptions& options) {
     const std::string parser = name + " (ina219-tuples)";
-    OptionReader o(options, parser, {"tick_period_s", "tick_bits", "max_bus_v"});
+    OptionReader o(options, parser, {"tick_period_s", "tick_bits", "max_bus_v", "max_power_w"});
     const double tick = o.number("tick_period_s", 0);
     const double bits = o.number("tick_bits", 16);
     if (bits < 8 || bits > 32 || bits != std::trunc(bits)) throw Error(parser + ": tick_bits must be an integer 8..32");
     const double wrap = std::ldexp(1.0, static_cast<int>(bits));
     const double max_bus = o.number("max_bus_v", 16);
     TraceBuilder b(name, "ina219-tuples");
+    b.power_source("rail", o);
     b.trace().quantity = "bus_V*current_mA";
     b.trace().resolution_w = 0;
     double last_tick = -1, wraps = 0;
@@ -265,10 +493,13 @@ PowerTrace parse_ina219_raw(std::string_view input, const std::string& name, con
         }
     }
     std::string time_ref = "adc";
+    ParseOptions cap;
     for (const auto& [k, v] : options) {
         if (k == "time_ref") time_ref = v;
+        else if (k == "max_power_w") cap[k] = v;
         else merged[k] = v;
     }
+    const OptionReader cap_reader(cap, parser, {"max_power_w"});
     if (time_ref != "adc" && time_ref != "read") throw Error(parser + ": option time_ref must be adc or read");
     if (auto it = merged.find("use"); it != merged.end()) use = it->second;
     if (use != "vi" && use != "power") throw Error(parser + ": option use must be vi or power");
@@ -302,7 +533,13 @@ PowerTrace parse_ina219_raw(std::string_view input, const std::string& name, con
     const double lag_range = poll > 0 ? std::min(poll, 2 * tc) : 2 * tc;
     const double time_shift = time_ref == "adc" ? 1.5 * tc + 0.5 * lag_range : 0.0;
     const double time_uncertainty = time_ref == "adc" ? 0.5 * lag_range : 1.5 * tc + lag_range;
+    // Each read's own lag: the cycle it returns ended after the previous read (else CNVR=0) and
+    // at most one cycle before it, uniformly over min(this read's interval, 2 tc) for a chip
+    // running free of the logger's clock. Its stamp is the middle of that range, its SD range/sqrt(12).
+    double prev_read = -1, sum_var = 0, lag_sum = 0;
+    std::size_t kept = 0;
     TraceBuilder b(name, "ina219-raw");
+    b.power_source("rail", cap_reader);
     b.trace().quantity = use == "power" ? "power register" : (cc >= 0 ? "bus x current register" : "bus x shunt/R");
     std::size_t overflow = 0, first_overflow = 0;
     double max_bus = 0;
@@ -337,22 +574,33 @@ PowerTrace parse_ina219_raw(std::string_view input, const std::string& name, con
         if (cp >= 0) r.power = reg(f[cp], l, "power");
         if (use != "power") r.power.reset();
         const Ina219Reading d = decode_ina219(r, cfg);
+        const double dt = prev_read >= 0 && *t > prev_read ? *t - prev_read : (poll > 0 ? poll : 2 * tc);
+        prev_read = *t;
         if (!d.conversion_ready) {
             b.drop(l.number, "no new conversion (CNVR=0)");
             continue;
         }
+        const double range = std::min(dt, 2 * tc);
         if (d.overflow && overflow++ == 0) first_overflow = l.number;
         max_bus = std::max(max_bus, d.bus_v);
-        b.add(l.number, *t - time_shift, d.power_w);
+        if (time_ref == "adc") {
+            b.add(l.number, *t - 1.5 * tc - 0.5 * range, d.power_w);
+            sum_var += range * range / 12, lag_sum += range, ++kept;
+        } else {
+            b.add(l.number, *t, d.power_w);
+        }
     }
     b.trace().time_uncertainty_s = time_uncertainty;
+    if (kept) b.trace().time_sd_s = std::sqrt(sum_var / static_cast<double>(kept));
     b.trace().settings = merged;
     b.trace().settings["time_ref"] = time_ref;
     b.trace().settings["use"] = use;
     if (time_shift > 0) {
-        char buf[300];
-        std::snprintf(buf, sizeof buf, "sample times moved %.4g ms before the read (centre of the shunt ADC window of the last cycle, which ended 0..%.4g ms "
-                      "before the read), +- %.4g ms in the error bound; time_ref=read keeps read times", 1e3 * time_shift, 1e3 * lag_range, 1e3 * time_uncertainty);
+        char buf[500];
+        std::snprintf(buf, sizeof buf, "sample times moved %.4g ms before the read on average (centre of the shunt ADC window of the last cycle, which "
+                      "ended 0..min(read interval, %.4g ms) before the read); timing error SD %.4g ms from the measured read intervals, a 95 %% term in "
+                      "the error bound; time_ref=read keeps read times", 1e3 * (1.5 * tc + 0.5 * (kept ? lag_sum / static_cast<double>(kept) : lag_range)),
+                      2e3 * tc, 1e3 * b.trace().time_sd_s);
         b.note(buf);
     }
     if (overflow) b.note(std::to_string(overflow) + " sample(s) flagged overflow (OVF or shunt beyond +-" + std::to_string(cfg.pga_mv) +

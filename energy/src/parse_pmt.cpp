@@ -11,7 +11,7 @@ namespace trn::energy {
 
 PowerTrace parse_pmt(std::string_view input, const std::string& name, const ParseOptions& options) {
     const std::string parser = name + " (pmt)";
-    OptionReader o(options, parser, {"column"});
+    OptionReader o(options, parser, {"column", "max_power_w"});
     const auto lines = text::split_lines(input);
     std::size_t hi = 0;
     while (hi < lines.size() && text::trim(lines[hi].text).empty()) ++hi;
@@ -29,6 +29,7 @@ PowerTrace parse_pmt(std::string_view input, const std::string& name, const Pars
         if (cp < 0) cp = 1;
     }
     TraceBuilder b(name, "pmt");
+    b.power_source("gpu", o);
     b.trace().quantity = std::string(header[cp]);
     b.trace().wall_clock = true;
     // Marker times are relative to PMT's own start, which the dump does not state; each marker's

@@ -28,7 +28,7 @@ int index_of(const std::vector<std::string_view>& tokens, std::string_view name)
 
 PowerTrace parse_powerstat(std::string_view input, const std::string& name, const ParseOptions& options) {
     const std::string parser = name + " (powerstat)";
-    OptionReader o(options, parser, {"column", "date"});
+    OptionReader o(options, parser, {"column", "date", "max_power_w"});
     const std::string column = o.text("column", "Watts");
     // powerstat prints the time of day only; date=YYYY-MM-DD makes the stamps absolute (local time).
     std::optional<double> day0;
@@ -37,6 +37,7 @@ PowerTrace parse_powerstat(std::string_view input, const std::string& name, cons
         if (!day0) throw Error(parser + ": option date='" + *d + "' is not YYYY-MM-DD");
     }
     TraceBuilder b(name, "powerstat");
+    b.power_source("cpu", o);
     b.trace().kind = SampleKind::IntervalMean;
     b.trace().quantity = column + " (powerstat; RAPL or battery, mean over each sample interval)";
     b.trace().resolution_w = 0.01;
@@ -83,19 +84,26 @@ PowerTrace parse_powerstat(std::string_view input, const std::string& name, cons
 
 PowerTrace parse_turbostat(std::string_view input, const std::string& name, const ParseOptions& options) {
     const std::string parser = name + " (turbostat)";
-    OptionReader o(options, parser, {"column", "interval_s"});
+    OptionReader o(options, parser, {"column", "interval_s", "max_power_w"});
     const std::string column = o.text("column", "PkgWatt");
     const auto interval = o.number("interval_s");
     if (interval && !(*interval > 0)) throw Error(parser + ": option interval_s must be > 0");
     TraceBuilder b(name, "turbostat");
+    b.power_source("cpu", o);
     b.trace().kind = SampleKind::IntervalMean;
     b.trace().quantity = column + " (turbostat, RAPL energy over each interval)";
     std::vector<std::string_view> header;
     int cw = -1, ct = -1, ccpu = -1, ccore = -1;
-    std::size_t rows = 0;
+    struct Row { std::size_t line; double t; double w; };
+    std::vector<Row> rows;
+    std::vector<double> seconds;  // "10.003521 sec": the length of a measurement (turbostat CMD)
     for (const auto& l : text::split_lines(input)) {
         const auto tok = text::split_ws(l.text);
         if (tok.empty()) continue;
+        if (tok.size() == 2 && tok[1] == "sec" && text::to_number(tok[0])) {
+            seconds.push_back(*text::to_number(tok[0]));
+            continue;
+        }
         if (index_of(tok, column) >= 0 && !text::to_number(tok.front())) {  // a header (turbostat repeats it)
             if (!header.empty() && tok != header) text::fail(name, l.number, "header differs from the first one (columns changed mid-log)");
             header = tok;
@@ -103,7 +111,7 @@ PowerTrace parse_turbostat(std::string_view input, const std::string& name, cons
             continue;
         }
         if (header.empty()) {
-            b.drop(l.number, "text before the first header naming " + column);
+            b.drop(l.number, "text before the first header naming " + column + " (version banner, CPUID/MSR lines)");
             continue;
         }
         // The summary row of an interval has '-' as CPU (or Core); per-CPU rows follow it.
@@ -118,22 +126,73 @@ PowerTrace parse_turbostat(std::string_view input, const std::string& name, cons
             const auto v = text::to_number(tok[ct]);
             if (!v) text::fail(name, l.number, "Time_Of_Day_Seconds '" + std::string(tok[ct]) + "' is not a number");
             t = *v;
-        } else {
-            t = static_cast<double>(rows + 1) * interval.value_or(5.0);
         }
-        ++rows;
-        b.add(l.number, t, *w);
+        rows.push_back({l.number, t, *w});
     }
     if (header.empty()) throw Error(parser + ": no header line naming " + column + " (turbostat --show " + column + ",...)");
     if (ct < 0) {
+        // Without a time column the interval must come from the file or the option, never a default.
+        std::vector<double> ends;
+        if (interval) {
+            for (std::size_t i = 0; i < rows.size(); ++i) ends.push_back(static_cast<double>(i + 1) * *interval);
+            b.note("no Time_Of_Day_Seconds column: rows placed every interval_s");
+        } else if (!seconds.empty() && seconds.size() == rows.size()) {
+            double sum = 0;
+            for (double s : seconds) ends.push_back(sum += s);
+            b.note("no Time_Of_Day_Seconds column: each row's interval from turbostat's 'N.NNN sec' line after it");
+        } else {
+            throw Error(parser + ": no Time_Of_Day_Seconds column and no interval in the log (" + std::to_string(seconds.size()) + " 'sec' line(s) for " +
+                        std::to_string(rows.size()) + " row(s)): pass interval_s=SECONDS (turbostat --interval), or log with --show Time_Of_Day_Seconds");
+        }
+        for (std::size_t i = 0; i < rows.size(); ++i) b.add(rows[i].line, ends[i], rows[i].w);
         b.trace().first_interval_start = 0.0;
-        b.note(interval ? "no Time_Of_Day_Seconds column: rows placed every interval_s" : "no Time_Of_Day_Seconds column: rows placed every 5 s (turbostat's default interval; pass interval_s=)");
-    } else if (interval) {
-        b.trace().first_interval_start = b.trace().t.empty() ? 0.0 : b.trace().t.front() - *interval;
     } else {
-        b.note("each reading is the mean over the interval ending at its time; the first interval's start is unknown (pass interval_s= to integrate it)");
+        for (const auto& r : rows) b.add(r.line, r.t, r.w);
+        if (interval) b.trace().first_interval_start = b.trace().t.empty() ? 0.0 : b.trace().t.front() - *interval;
+        else b.note("each reading is the mean over the interval ending at its time; the first interval's start is unknown (pass interval_s= to integrate it)");
     }
     b.trace().resolution_w = 0.01;
+    return b.finish();
+}
+
+PowerTrace parse_powerjoular(std::string_view input, const std::string& name, const ParseOptions& options) {
+    const std::string parser = name + " (powerjoular)";
+    OptionReader o(options, parser, {"column", "max_power_w"});
+    const auto lines = text::split_lines(input);
+    std::size_t hi = 0;
+    while (hi < lines.size() && text::trim(lines[hi].text).empty()) ++hi;
+    if (hi == lines.size()) throw Error(parser + ": empty file");
+    std::vector<std::string> cols;
+    for (auto f : text::split(lines[hi].text, ',')) cols.emplace_back(text::trim(f));
+    auto col = [&](const std::string& n) {
+        for (std::size_t i = 0; i < cols.size(); ++i)
+            if (text::lower(cols[i]) == text::lower(n)) return static_cast<int>(i);
+        return -1;
+    };
+    if (col("Date") != 0) text::fail(name, lines[hi].number, "expected the PowerJoular header 'Date,CPU Utilization,...'");
+    const std::string column = o.text("column", col("Total Power") >= 0 ? "Total Power" : "CPU Power");
+    const int cp = col(column);
+    if (cp < 0) text::fail(name, lines[hi].number, "header has no '" + column + "' column");
+    TraceBuilder b(name, "powerjoular");
+    b.power_source(column == "GPU Power" ? "gpu" : column == "CPU Power" ? "cpu" : "node", o);
+    b.trace().kind = SampleKind::IntervalMean;
+    b.trace().quantity = column + " (PowerJoular, mean over the second before each stamp)";
+    b.trace().wall_clock = b.trace().local_time = true;
+    b.trace().resolution_w = 0;
+    for (std::size_t li = hi + 1; li < lines.size(); ++li) {
+        const auto& l = lines[li];
+        if (text::trim(l.text).empty()) continue;
+        const auto f = text::split(l.text, ',');
+        if (f.size() != cols.size()) text::fail(name, l.number, "expected " + std::to_string(cols.size()) + " fields as in the header, found " + std::to_string(f.size()));
+        const auto t = text::parse_datetime(f[0]);
+        if (!t) text::fail(name, l.number, "Date '" + std::string(text::trim(f[0])) + "' is not YYYY-MM-DD HH:MM:SS");
+        const auto w = text::to_number(f[cp]);
+        if (!w) text::fail(name, l.number, column + " '" + std::string(text::trim(f[cp])) + "' is not a number");
+        b.add(l.number, *t, *w);
+    }
+    if (!b.trace().t.empty()) b.trace().first_interval_start = b.trace().t.front() - 1.0;
+    b.note("each row is the mean power over the 1 s cycle ending at its stamp (PowerJoular's period); stamps have 1 s resolution and no time zone, "
+           "taken as UTC (--timezone/--utc-offset to convert)");
     return b.finish();
 }
 

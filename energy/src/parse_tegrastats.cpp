@@ -1,5 +1,7 @@
 // tegrastats logs of the TX1/TX2, Nano, Xavier and Orin generations.
+#include <algorithm>
 #include <cctype>
+#include <cstdio>
 #include <map>
 
 #include "option_reader.hpp"
@@ -32,11 +34,15 @@ std::optional<double> rail_value(std::string_view s) {
 
 PowerTrace parse_tegrastats(std::string_view input, const std::string& name, const ParseOptions& options) {
     const std::string parser = name + " (tegrastats)";
-    OptionReader o(options, parser, {"rail", "interval_ms"});
+    OptionReader o(options, parser, {"rail", "interval_ms", "max_power_w"});
     const std::string rail = o.text("rail", "");
-    const double interval = o.number("interval_ms", 1000) * 1e-3;
+    const auto interval_given = o.number("interval_ms");
+    const double interval = interval_given.value_or(1000) * 1e-3;
     if (!(interval > 0)) throw Error(parser + ": interval_ms must be > 0");
+    struct Entry { std::size_t line; std::optional<double> stamp; double w; };
+    std::vector<Entry> entries;
     TraceBuilder b(name, "tegrastats");
+    b.power_source("soc", o);
     b.trace().resolution_w = 1e-3;
     std::size_t stamped = 0, unstamped = 0, index = 0;
     std::string rule, sum_rails;
@@ -92,8 +98,48 @@ PowerTrace parse_tegrastats(std::string_view input, const std::string& name, con
         }
         if (t) ++stamped; else ++unstamped;
         if (stamped && unstamped) text::fail(name, l.number, "some lines have time stamps and some do not");
-        b.add(l.number, t ? *t : index * interval, mw * 1e-3);
-        ++index;
+        entries.push_back({l.number, t, mw * 1e-3});
+    }
+    // JetPack 6 stamps have 1 s resolution: at --interval 100 or 500 several lines share one. The
+    // lines of a stamp are placed interval_ms apart (else 1 s / the usual count per stamp) from
+    // the start of their second; the first stamp's lines are the last of their second.
+    std::size_t shared = 0, crowded = 0, largest = 1;
+    double spacing = interval;
+    if (stamped) {
+        std::vector<std::pair<std::size_t, std::size_t>> groups;  // [begin, end) of equal stamps
+        for (std::size_t i = 0; i < entries.size();) {
+            std::size_t k = i + 1;
+            while (k < entries.size() && *entries[k].stamp == *entries[i].stamp) ++k;
+            groups.push_back({i, k});
+            largest = std::max(largest, k - i);
+            if (k - i > 1) shared += k - i;
+            i = k;
+        }
+        if (shared && !interval_given) {
+            std::vector<std::size_t> sizes;
+            for (std::size_t g = groups.size() > 2 ? 1 : 0; g < (groups.size() > 2 ? groups.size() - 1 : groups.size()); ++g)
+                sizes.push_back(groups[g].second - groups[g].first);
+            std::nth_element(sizes.begin(), sizes.begin() + static_cast<std::ptrdiff_t>(sizes.size() / 2), sizes.end());
+            spacing = 1.0 / static_cast<double>(sizes[sizes.size() / 2]);
+        }
+        for (std::size_t g = 0; g < groups.size(); ++g) {
+            const auto [begin, end] = groups[g];
+            const std::size_t n = end - begin;
+            const bool fits = static_cast<double>(n) * spacing <= 1 + 1e-9;
+            if (!fits) ++crowded;
+            for (std::size_t j = 0; j < n; ++j) {
+                const Entry& e = entries[begin + j];
+                double t = *e.stamp;
+                if (n > 1 || shared) {
+                    if (!fits) t += static_cast<double>(j) / static_cast<double>(n);
+                    else if (g == 0 && groups.size() > 1) t += 1 - static_cast<double>(n - j) * spacing;
+                    else t += static_cast<double>(j) * spacing;
+                }
+                b.add(e.line, t, e.w);
+            }
+        }
+    } else {
+        for (const Entry& e : entries) b.add(e.line, static_cast<double>(index++) * interval, e.w);
     }
     b.trace().quantity = rule;
     b.trace().wall_clock = stamped > 0;
@@ -102,6 +148,13 @@ PowerTrace parse_tegrastats(std::string_view input, const std::string& name, con
                " ms (assumed tegrastats --interval); timing is only as good as that assumption");
     b.trace().local_time = stamped > 0;
     if (stamped) b.note("time stamps have 1 s resolution and no time zone; taken as UTC (--timezone/--utc-offset to convert)");
+    if (shared) {
+        char buf[400];
+        std::snprintf(buf, sizeof buf, "%zu lines share their 1 s time stamp with others (up to %zu per stamp): placed %.4g ms apart within their second (%s)%s",
+                      shared, largest, spacing * 1e3, interval_given ? "interval_ms" : "1 s / the usual count per stamp; interval_ms= to state the --interval",
+                      crowded ? "; stamps with more lines than fit are spread evenly over their second" : "");
+        b.note(buf);
+    }
     return b.finish();
 }
 

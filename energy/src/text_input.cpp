@@ -112,6 +112,8 @@ std::optional<double> parse_datetime(std::string_view s, bool* zone_known) {
         if (!read_int(r, 4, y) || !eat(r, "-/") || !read_int(r, 2, mo) || !eat(r, "-/") || !read_int(r, 2, d)) return std::nullopt;
     } else if (r.size() >= 10 && r[2] == '-' && r[5] == '-') {  // tegrastats MM-DD-YYYY
         if (!read_int(r, 2, mo) || !eat(r, "-") || !read_int(r, 2, d) || !eat(r, "-") || !read_int(r, 4, y)) return std::nullopt;
+    } else if (r.size() >= 10 && r[2] == '.' && r[5] == '.') {  // DD.MM.YYYY (German wall meters and loggers)
+        if (!read_int(r, 2, d) || !eat(r, ".") || !read_int(r, 2, mo) || !eat(r, ".") || !read_int(r, 4, y)) return std::nullopt;
     } else {
         return std::nullopt;
     }

@@ -38,3 +38,28 @@ void validate_trace(const PowerTrace& trace) {
 }
 
 }  // namespace trn::energy
+
+namespace trn::energy {
+
+const std::vector<PowerSource>& power_sources() {
+    static const std::vector<PowerSource> sources = {
+        {"rail", 1000, true, "an INA2xx/INA3221 rail (bidirectional shunt)"},
+        {"gpu", 2000, false, "a GPU board"},
+        {"cpu", 2000, false, "a CPU package (RAPL energy counter)"},
+        {"soc", 300, false, "a Jetson module"},
+        {"node", 20000, true, "a computer or a server node (meter, BMC)"},
+        {"rack", 500000, true, "a rack"},
+    };
+    return sources;
+}
+
+const PowerSource& power_source(const std::string& name) {
+    std::string list;
+    for (const auto& s : power_sources()) {
+        if (s.name == name) return s;
+        list += (list.empty() ? "" : ", ") + s.name;
+    }
+    throw Error("option source='" + name + "': unknown (known: " + list + ")");
+}
+
+}  // namespace trn::energy

@@ -1,11 +1,15 @@
 #pragma once
 // Collects samples for a parser: refuses a time that goes backwards (names the line), drops
-// physically implausible readings into the trace's warnings, counts rows dropped for a reason
-// and turns the counts into the trace's notes.
+// readings beyond the source's plausibility cap into the trace's warnings, refuses a negative
+// reading where the source cannot draw negative power and warns where it can, counts rows dropped
+// for a reason and turns the counts into the trace's notes (a warning when most of a log went).
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <string>
 
+#include "option_reader.hpp"
 #include "text_input.hpp"
 #include "trn/energy/trace.hpp"
 
@@ -19,21 +23,47 @@ public:
     }
     PowerTrace& trace() { return trace_; }
 
+    // The source whose cap and sign rules apply (power_sources()), and max_power_w= when given.
+    // `times` scales the cap (gpu=all: N boards).
+    void power_source(const std::string& name, const OptionReader& o, double times = 1) {
+        source_ = trn::energy::power_source(name);
+        source_.max_w *= times;
+        if (times > 1) source_.description = std::to_string(static_cast<int>(times)) + " x " + source_.description;
+        if (const auto cap = o.number("max_power_w")) {
+            if (!(*cap > 0)) throw Error(trace_.source + ": option max_power_w must be > 0");
+            source_.max_w = *cap;
+            cap_given_ = true;
+        }
+    }
+    const PowerSource& power_source() const { return source_; }
+
     // Adds a sample; a time equal to the previous one is dropped as a duplicate stamp, an
     // earlier one is an error (the log is out of order or the clock stepped back).
     void add(std::size_t line, double t, double w) {
+        ++rows_;
         if (!trace_.t.empty() && t <= trace_.t.back()) {
             if (t == trace_.t.back()) {
+                ++same_stamp_;
                 drop(line, "same time stamp as the row before");
                 return;
             }
             text::fail(trace_.source, line, "time goes backwards (" + std::to_string(t) + " s after " +
                                                 std::to_string(trace_.t.back()) + " s)");
         }
-        if (!(w >= kMinPlausibleW && w <= kMaxPlausibleW)) {
+        if (!(std::abs(w) <= source_.max_w)) {
             if (implausible_++ == 0) first_implausible_w_ = w;
             drop(line, kImplausible);
             return;
+        }
+        if (w < 0) {
+            if (!source_.can_be_negative) {
+                char buf[160];
+                std::snprintf(buf, sizeof buf, "negative power %g W, which %s cannot draw (a sign or decode error in the log)", w,
+                              source_.description.c_str());
+                text::fail(trace_.source, line, buf);
+            }
+            if (negative_++ == 0) first_negative_line_ = line;
+            min_w_ = std::min(min_w_, w);
         }
         trace_.t.push_back(t);
         trace_.w.push_back(w);
@@ -46,20 +76,35 @@ public:
 
     PowerTrace finish() {
         std::string why_few = dropped_.empty() ? "" : "; dropped rows: see the notes";
+        char buf[400];
         if (implausible_) {
-            char buf[256];
-            std::snprintf(buf, sizeof buf, "dropped %zu implausible power reading(s) outside [%g W, %g W] (first at line %zu: %g W); the trace is interpolated across them",
-                          implausible_, kMinPlausibleW, kMaxPlausibleW, dropped_[kImplausible].second, first_implausible_w_);
+            std::snprintf(buf, sizeof buf, "dropped %zu implausible power reading(s) beyond +-%g W (the cap for %s%s; first at line %zu: %g W); "
+                          "the trace is interpolated across them",
+                          implausible_, source_.max_w, source_.description.c_str(), cap_given_ ? ", max_power_w" : "; max_power_w= to change",
+                          dropped_[kImplausible].second, first_implausible_w_);
             trace_.warnings.push_back(trace_.source + ": " + buf);
             why_few = std::string("; ") + buf;
+        }
+        if (negative_) {
+            std::snprintf(buf, sizeof buf, "%zu negative power reading(s) kept as read (first at line %zu, lowest %g W): a reverse current or an "
+                          "offset; they lower the joules", negative_, first_negative_line_, min_w_);
+            trace_.warnings.push_back(trace_.source + ": " + buf);
         }
         for (const auto& [reason, cf] : dropped_)
             trace_.notes.push_back("dropped " + std::to_string(cf.first) + " row(s): " + reason + " (first at line " +
                                    std::to_string(cf.second) + ")");
+        const std::string last_drop = dropped_.empty() ? "" : trace_.notes.back();
+        if (same_stamp_ * 10 > rows_ && same_stamp_ > 0)
+            trace_.warnings.push_back(trace_.source + ": dropped " + std::to_string(same_stamp_) + " of " + std::to_string(rows_) +
+                                      " rows sharing the time stamp of the row before: the log is sampled faster than its stamps resolve");
+        std::snprintf(buf, sizeof buf, "plausibility cap +-%g W (%s%s)", source_.max_w, source_.description.c_str(),
+                      cap_given_ ? ", max_power_w" : "; max_power_w= to change");
+        // once: a trnkit log written from a parsed trace carries it among its notes already
+        if (std::find(trace_.notes.begin(), trace_.notes.end(), std::string(buf)) == trace_.notes.end()) trace_.notes.push_back(buf);
         recognise_unix_time();
         if (trace_.t.size() < 2)
             throw Error(trace_.source + ": fewer than two usable samples (" + std::to_string(trace_.t.size()) + ") in this " + trace_.format + " log" +
-                        (implausible_ || dropped_.empty() ? why_few : "; " + trace_.notes.back()));
+                        (implausible_ || dropped_.empty() ? why_few : "; " + last_drop));
         return std::move(trace_);
     }
 
@@ -76,10 +121,12 @@ private:
     }
     static constexpr double kUnix2000 = 946684800, kUnix2100 = 4102444800;
     PowerTrace trace_;
+    PowerSource source_ = trn::energy::power_source("node");
+    bool cap_given_ = false;
     std::map<std::string, std::pair<std::size_t, std::size_t>> dropped_;
-    static constexpr const char* kImplausible = "power outside the plausible range (see warnings)";
-    std::size_t implausible_ = 0;
-    double first_implausible_w_ = 0;
+    static constexpr const char* kImplausible = "power beyond the source's plausibility cap (see warnings)";
+    std::size_t implausible_ = 0, negative_ = 0, first_negative_line_ = 0, rows_ = 0, same_stamp_ = 0;
+    double first_implausible_w_ = 0, min_w_ = 0;
 };
 
 }  // namespace trn::energy

@@ -105,10 +105,12 @@ TEST(Formats, Turbostat) {
     EXPECT_DOUBLE_EQ(s.t[0], 2.0);
     EXPECT_DOUBLE_EQ(s.w[2], 25.40);
     EXPECT_DOUBLE_EQ(*s.first_interval_start, 0.0);
-    const PowerTrace ram = parse_power_log(example("turbostat_summary_no_time.txt"), "s.txt", "turbostat", {{"column", "RAMWatt"}});
+    const PowerTrace ram = parse_power_log(example("turbostat_summary_no_time.txt"), "s.txt", "turbostat", {{"column", "RAMWatt"}, {"interval_s", "5"}});
     EXPECT_DOUBLE_EQ(ram.w[2], 2.90);
-    EXPECT_DOUBLE_EQ(ram.t[1], 10.0);  // turbostat's default 5 s interval, noted
-    EXPECT_NE(error_of("PkgWatt\n12.5\nabc\n", "turbostat").find("x.log:3: PkgWatt 'abc' is not a number"), std::string::npos);
+    EXPECT_DOUBLE_EQ(ram.t[1], 10.0);
+    // Without a time column or interval_s the interval is never assumed (issue 26; it was 5 s).
+    EXPECT_NE(error_of(example("turbostat_summary_no_time.txt"), "turbostat").find("pass interval_s=SECONDS"), std::string::npos);
+    EXPECT_NE(error_of("PkgWatt\n12.5\nabc\n", "turbostat", {{"interval_s", "1"}}).find("x.log:3: PkgWatt 'abc' is not a number"), std::string::npos);
 }
 
 TEST(Formats, UnixEpochSecondsAreAbsolute) {

@@ -85,17 +85,26 @@ TEST(ImplausiblePower, CliWarnsOnStderr) {
     fs::remove_all(dir);
 }
 
-TEST(ImplausiblePower, CeilingAndNoiseFloor) {
+TEST(ImplausiblePower, CeilingPerSourceAndNegativeReadings) {
     const std::string head = "# trnkit-power v1 kind=instant format=trnkit quantity=power wall_clock=0 resolution_w=0\nt_s,power_w\n";
-    // A small negative reading (sensor offset near 0 W) is kept; 20 kW is not.
-    const PowerTrace tr = parse_power_log(head + "0,1.5\n1,-0.2\n2,20000\n3,1.5\n", "spike.log");
+    // trnkit's own log is capped as a node (20 kW, issue 26): 30 kW is a glitch; a small negative
+    // reading (sensor offset near 0 W) is kept and warned.
+    const PowerTrace tr = parse_power_log(head + "0,1.5\n1,-0.2\n2,30000\n3,1.5\n", "spike.log");
     EXPECT_EQ(tr.size(), 3u);
-    ASSERT_EQ(tr.warnings.size(), 1u);
-    EXPECT_NE(tr.warnings[0].find("line 5: 20000 W"), std::string::npos) << tr.warnings[0];
+    ASSERT_EQ(tr.warnings.size(), 2u);
+    EXPECT_NE(tr.warnings[0].find("line 5: 30000 W"), std::string::npos) << tr.warnings[0];
+    EXPECT_NE(tr.warnings[1].find("1 negative power reading(s) kept as read (first at line 4"), std::string::npos) << tr.warnings[1];
+    // A source that cannot draw negative power refuses it, naming the line.
+    try {
+        parse_power_log(head + "0,-5\n1,-5\n2,-5\n", "reversed.log", "auto", {{"source", "gpu"}});
+        FAIL() << "a GPU log of negative power was accepted";
+    } catch (const trn::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("reversed.log:3: negative power -5 W"), std::string::npos) << e.what();
+    }
     // A log with nothing plausible left is refused, saying why.
     try {
-        parse_power_log(head + "0,-5\n1,-5\n2,-5\n", "reversed.log");
-        FAIL() << "a log of negative power was accepted";
+        parse_power_log(head + "0,1e6\n1,1e6\n2,1e6\n", "huge.log");
+        FAIL() << "a log of implausible power was accepted";
     } catch (const trn::Error& e) {
         EXPECT_NE(std::string(e.what()).find("implausible"), std::string::npos) << e.what();
         EXPECT_NE(std::string(e.what()).find("line 3"), std::string::npos) << e.what();

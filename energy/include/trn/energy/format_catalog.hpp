@@ -15,9 +15,10 @@ struct PowerLogFormat {
     std::string units;    // of time and power
     std::string example;  // one data line
     std::string options;  // --opt KEY=VALUE it accepts
+    std::string quirks;   // what the parser does about the format's known traps
 };
 
-// In power_log_formats() order (tests/energy/test_formats.cpp checks the two lists agree).
+// In power_log_formats() order: both come from energy/src/power_formats.def.
 const std::vector<PowerLogFormat>& power_log_format_catalog();
 // The catalog as text for a terminal.
 std::string format_catalog_text();

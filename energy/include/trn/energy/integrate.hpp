@@ -2,12 +2,16 @@
 // Energy of intervals of a power trace. Trapezoid rule with the power interpolated at each
 // interval's exact start and end (default), or zero-order hold (each sample held until the
 // next). Each frame gets its sample count and an error bound
-//     sum over sample intervals of |w[k+1] - w[k]| x covered length + resolution/2 x duration
-// (true power that moves monotonically between two samples, even a step at either end, stays
-// within that; quantisation adds at most half an LSB at every instant), plus, when the trace's
-// sample times are uncertain by +-d (PowerTrace::time_uncertainty_s), 2 d x the samples' total
-// variation over [start - d, end + d]. Frames that cannot be measured are flagged, never dropped,
-// and their energy is 0 rather than NaN.
+//     sum over sample intervals of |w[k+1] - w[k]| x max(A, B) + resolution/2 x duration
+// where, for the part [x, y] of a sample interval [a, b] inside the frame, A = int_x^y (t-a)/(b-a)
+// dt and B = (y - x) - A (true power anywhere between two samples, even a step at either end,
+// stays within that: |dw| (b-a)/2 for a whole interval; quantisation adds at most half an LSB at
+// every instant), plus a timing term: with a measured spread of the sample times
+// (PowerTrace::time_sd_s = sigma) 2 sigma sqrt(sum ((w[k+1] - w[k-1])/2)^2) over the samples
+// shaping the frame (95 %); else, when the times are uncertain by +-d
+// (PowerTrace::time_uncertainty_s), 2 d x the samples' total variation over [start - d, end + d]
+// (worst case). Frames that cannot be measured are flagged, never dropped, and their energy is 0
+// rather than NaN.
 #include <string>
 #include <vector>
 

@@ -19,8 +19,9 @@ using ParseOptions = std::map<std::string, std::string>;
 // "key=value" strings (from the CLI) to options; throws on a missing '='.
 ParseOptions parse_option_list(const std::vector<std::string>& items);
 
-// INA219 logs in engineering units. Delimited text with a header naming columns, or headerless
-// with columns=... . Options: columns (comma list overriding the header), time, bus_v, shunt_v,
+// Logger CSVs (INA219/INA22x scripts, wall meters, BMC or pynvml loggers): ',', ';', tab or
+// space-aligned, with a header naming columns, or headerless with columns=... . Units from the
+// column names or options, never assumed; decimal commas read where unambiguous, else refused. Options: columns (comma list overriding the header), time, bus_v, shunt_v,
 // current, power (column names), time_unit (s|ms|us|iso|index), period_s (for time_unit=index),
 // bus_v_unit/shunt_v_unit (V|mV), current_unit (A|mA), power_unit (W|mW), use (vi|power).
 PowerTrace parse_ina219_csv(std::string_view text, const std::string& name, const ParseOptions& options = {});
@@ -56,8 +57,13 @@ PowerTrace parse_hwmon_records(std::string_view text, const std::string& name, c
 PowerTrace parse_powerstat(std::string_view text, const std::string& name, const ParseOptions& options = {});
 // turbostat (--show Time_Of_Day_Seconds,PkgWatt,... ; --Summary or the per-CPU table, whose
 // summary rows carry '-' as CPU). Options: column (default PkgWatt; CorWatt, RAMWatt, GFXWatt,
-// SysWatt), interval_s (rows without Time_Of_Day_Seconds; default 5 s, turbostat's).
+// SysWatt), interval_s (rows without Time_Of_Day_Seconds: from it, or from turbostat's "N.NNN sec"
+// lines, else refused). A version banner and CPUID/MSR lines before the table are skipped.
 PowerTrace parse_turbostat(std::string_view text, const std::string& name, const ParseOptions& options = {});
+// PowerJoular CSV "Date,CPU Utilization,Total Power,CPU Power,GPU Power" (W, one row a second,
+// each the mean over the second before its zone-less local stamp). Options: column (default Total
+// Power when present, else CPU Power).
+PowerTrace parse_powerjoular(std::string_view text, const std::string& name, const ParseOptions& options = {});
 // trnkit's own log (written by the sysfs sampler and the INA219 simulator's decode):
 // "# trnkit-power v1 kind=instant|interval-mean ..." then t_s,power_w lines.
 PowerTrace parse_trnkit_power(std::string_view text, const std::string& name, const ParseOptions& options = {});

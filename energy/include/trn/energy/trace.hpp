@@ -11,12 +11,20 @@
 TRN_API_BEGIN
 namespace trn::energy {
 
-// Every parser drops a reading outside [kMinPlausibleW, kMaxPlausibleW] and counts it in the
-// trace's warnings: below a small noise floor a consumer cannot draw negative power (a sign or
-// decode glitch), and no logger this harness reads measures more than 10 kW (one -1e6 W glitch
-// would otherwise pull the idle baseline hundreds of watts negative).
-inline constexpr double kMinPlausibleW = -0.5;
-inline constexpr double kMaxPlausibleW = 10000;
+// Plausibility belongs to the source: every parser drops a reading above its source's cap (or
+// below minus the cap) as a glitch, counts it in the trace's warnings and says the cap in a note;
+// `max_power_w=` sets it. A source that cannot draw negative power (a GPU, a RAPL counter, a
+// Jetson rail) refuses a negative reading (file:line); one that can (a bidirectional INA shunt, an
+// unknown meter) keeps it with a warning. power_sources() lists them.
+struct PowerSource {
+    std::string name;         // rail, gpu, cpu, soc, node, rack
+    double max_w = 0;         // plausibility cap (W)
+    bool can_be_negative = false;
+    std::string description;  // "an INA2xx/INA3221 rail", ...
+};
+const std::vector<PowerSource>& power_sources();
+// Throws trn::Error naming the known sources for an unknown name.
+const PowerSource& power_source(const std::string& name);
 
 // How one sample relates to time.
 enum class SampleKind {
@@ -48,12 +56,18 @@ struct PowerTrace {
     // Each reading's true time lies within t +- this (s): e.g. an INA219 read some time after its
     // conversion finished. integrate_interval adds its effect to the error bound. 0: exact/unknown.
     double time_uncertainty_s = 0;
+    // Standard deviation of each reading's time error (s), when the parser can measure it from
+    // the log (ina219-raw: each read's lag behind its conversion, from the read intervals). When
+    // > 0 the bound's timing term is a 95 % one (2 sigma of the energy error these errors cause)
+    // instead of the worst case from time_uncertainty_s.
+    double time_sd_s = 0;
     // Settings the parser used that came from the log itself (calibration in "# key=value"
     // comment lines) merged with the options, as KEY=VALUE: the run report's provenance.
     std::map<std::string, std::string> settings;
     std::vector<std::string> notes;  // hygiene: dropped rows, glitches, gaps, assumed values
     // What a run report must surface as a warning (and the CLI on stderr), not only as a note:
-    // readings dropped as physically implausible (see kMinPlausibleW / kMaxPlausibleW).
+    // readings dropped as physically implausible (above the source's cap), negative readings
+    // kept, most rows of a log dropped.
     std::vector<std::string> warnings;
     std::vector<Marker> markers;     // markers embedded in the log
 
