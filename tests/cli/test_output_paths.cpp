@@ -22,6 +22,7 @@
 #include "../energy/synthetic_run.hpp"
 #include "trn/energy/markers.hpp"
 #include "trn/energy/parsers.hpp"
+#include "temp_folder_test.hpp"
 #include "trn/error.hpp"
 #include "trn/io/atomic_file.hpp"
 #include "trn/io/gnuplot.hpp"
@@ -30,20 +31,9 @@
 namespace {
 namespace fs = std::filesystem;
 
-struct Result {
-    int code;
-    std::string output;
-};
+using Result = trn::test::CliResult;
 
-Result shell(const std::string& line) {
-    FILE* p = popen(line.c_str(), "r");
-    Result r{-1, {}};
-    char buf[4096];
-    while (std::size_t n = std::fread(buf, 1, sizeof buf, p)) r.output.append(buf, n);
-    const int status = pclose(p);
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
-    return r;
-}
+Result shell(const std::string& line) { return trn::test::run_shell(line); }
 
 // TRNKIT_UNDER_TEST=/path/to/an/older/trnkit runs these cases against another build (to show what
 // they catch there); by default the trnkit of this build.
@@ -59,21 +49,10 @@ std::string slurp(const fs::path& p) {
 
 bool has_gnuplot() { return !trn::io::find_program("gnuplot", "/usr/local/bin:/usr/bin:/bin").empty(); }
 
-const std::string kSimulate = "simulate --scenario FC-300 --size-m 900";
 
-class OutputPaths : public testing::Test {
+class OutputPaths : public trn::test::TempFolderTest {
 protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() / ("trnkit_paths_" + std::to_string(::getpid()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-    std::string path(const std::string& name) const { return (dir_ / name).string(); }
-    void simulate(const std::string& name, int frames) {
-        const Result r = trnkit(kSimulate + " --frames " + std::to_string(frames) + " --out " + path(name));
-        ASSERT_EQ(r.code, 0) << r.output;
-    }
+    OutputPaths() : TempFolderTest("trnkit_paths_", trnkit) {}
     // A file outside every output folder that a planted link points to.
     std::string victim(const std::string& name) {
         fs::create_directories(path("elsewhere"));
@@ -97,7 +76,6 @@ protected:
         for (int i = 0; i < 5; ++i) poses << 60 + i << ",60,0.1,1\n";
         return "score --backend cpu --map " + path("map.png") + " --template " + path("templ.png") + " --poses " + path("poses.csv");
     }
-    fs::path dir_;
 };
 
 // Finding 1: a dataset that ships localize/.trnkit-output and links named like localize's files.

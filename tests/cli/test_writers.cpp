@@ -22,6 +22,7 @@
 #include "../energy/synthetic_run.hpp"
 #include "trn/energy/markers.hpp"
 #include "trn/energy/parsers.hpp"
+#include "temp_folder_test.hpp"
 #include "trn/error.hpp"
 #include "trn/io/atomic_file.hpp"
 #include "trn/io/output_folder.hpp"
@@ -29,22 +30,9 @@
 namespace {
 namespace fs = std::filesystem;
 
-struct Result {
-    int code;
-    std::string output;  // stdout and stderr together, unless the command redirects them
-};
+using Result = trn::test::CliResult;
 
-// Runs a shell command line (so tests can use `ulimit` and `> /dev/full`); the result has what
-// the line leaves on its standard output.
-Result shell(const std::string& line) {
-    FILE* p = popen(line.c_str(), "r");
-    Result r{-1, {}};
-    char buf[4096];
-    while (std::size_t n = std::fread(buf, 1, sizeof buf, p)) r.output.append(buf, n);
-    const int status = pclose(p);
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
-    return r;
-}
+Result shell(const std::string& line) { return trn::test::run_shell(line); }
 
 const std::string kExe = TRNKIT_EXE;
 Result trnkit(const std::string& args) { return shell(kExe + " " + args + " 2>&1"); }
@@ -78,20 +66,9 @@ std::size_t count_frames(const fs::path& folder) { return names_starting(folder,
 
 const std::string kSimulate = "simulate --scenario FC-300 --size-m 900";
 
-class Writers : public testing::Test {
+class Writers : public trn::test::TempFolderTest {
 protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() / ("trnkit_writers_" + std::to_string(::getpid()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-    std::string path(const std::string& name) const { return (dir_ / name).string(); }
-    // A small valid dataset in `name` (`frames` frames).
-    void simulate(const std::string& name, int frames) {
-        const Result r = trnkit(kSimulate + " --frames " + std::to_string(frames) + " --out " + path(name));
-        ASSERT_EQ(r.code, 0) << r.output;
-    }
+    Writers() : TempFolderTest("trnkit_writers_", trnkit) {}
     // Map, template and `n` poses for `trnkit score`.
     std::string score_inputs(int n) {
         cv::imwrite(path("map.png"), trn::test::textured_image(240, 200, 1).mat());
@@ -101,7 +78,6 @@ protected:
         for (int i = 0; i < n; ++i) poses << 60 + i % 100 << "," << 60 + i / 100 << ",0.1,1\n";
         return "score --backend cpu --map " + path("map.png") + " --template " + path("templ.png") + " --poses " + path("poses.csv");
     }
-    fs::path dir_;
 };
 
 TEST_F(Writers, SimulateWithABadOptionLeavesTheEarlierDatasetByteIdentical) {
