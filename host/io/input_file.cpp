@@ -16,6 +16,11 @@ namespace {
 
 struct Fd {
     int fd = -1;
+    explicit Fd(int f) : fd(f) {}
+    Fd(Fd&& o) noexcept : fd(o.fd) { o.fd = -1; }
+    Fd(const Fd&) = delete;
+    Fd& operator=(const Fd&) = delete;
+    Fd& operator=(Fd&&) = delete;
     ~Fd() {
         if (fd >= 0) ::close(fd);
     }
@@ -74,25 +79,26 @@ std::string errno_message(int error) {
 #endif
 }
 
-FileIdentity check_input_file(const std::string& path, std::uint64_t max_bytes, std::string_view what) {
+// Opens the file (open_checked) and checks what fstat says of it (check_stat), filling `st`.
+static Fd open_and_check(const std::string& path, std::uint64_t max_bytes, std::string_view what, struct stat& st) {
     Fd f{open_checked(path)};
-    struct stat st {};
     if (::fstat(f.fd, &st) != 0) {
         const int e = errno;
         throw Error(quote_input(path, 512) + ": cannot read its status (" + errno_message(e) + ")");
     }
     check_stat(path, st, max_bytes, what);
+    return f;
+}
+
+FileIdentity check_input_file(const std::string& path, std::uint64_t max_bytes, std::string_view what) {
+    struct stat st {};
+    open_and_check(path, max_bytes, what, st);
     return identity_of(st);
 }
 
 std::string read_input_file(const std::string& path, std::uint64_t max_bytes, std::string_view what, FileIdentity* identity) {
-    Fd f{open_checked(path)};
     struct stat st {};
-    if (::fstat(f.fd, &st) != 0) {
-        const int e = errno;
-        throw Error(quote_input(path, 512) + ": cannot read its status (" + errno_message(e) + ")");
-    }
-    check_stat(path, st, max_bytes, what);
+    const Fd f = open_and_check(path, max_bytes, what, st);
     // A regular file: O_NONBLOCK has no effect on it. Read what is there, but never more than the
     // limit, should it grow while being read.
     std::string text;

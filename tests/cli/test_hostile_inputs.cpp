@@ -2,7 +2,7 @@
 // with exit 1, what would crash, hang, eat memory or print nonsense: deep JSON, FIFOs and devices
 // in a dataset, image headers claiming huge images, errno paths, values no flight has, byte order
 // marks, huge fields, and a dataset replaced while it is read. Each case runs the real trnkit
-// (TRNKIT_EXE; TRN_TEST_TRNKIT overrides it, to show an older build failing these tests) under
+// (TRNKIT_EXE; TRNKIT_UNDER_TEST overrides it, to show an older build failing these tests) under
 // `timeout` and a memory limit, so the old behaviour fails the test instead of hanging the suite.
 #include <gtest/gtest.h>
 #include <sys/stat.h>
@@ -15,6 +15,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "cli_process.hpp"
 #include "trn/error.hpp"
 #include "trn/filter/flight_source.hpp"
 #include "trn/io/image_header.hpp"
@@ -25,27 +26,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct Result {
-    int code;
-    std::string output;
-};
-
-std::string exe() {
-    const char* over = std::getenv("TRN_TEST_TRNKIT");  // a test program, not the library
-    return over && *over ? over : TRNKIT_EXE;
-}
+using Result = trn::test::CliResult;
 
 // Runs `prefix trnkit args` in a shell with a 20 s timeout and a 3 GB address-space limit.
 Result run(const std::string& args, const std::string& prefix = "") {
-    const std::string cmd = "ulimit -v 3000000; timeout 20 " + prefix + " " + exe() + " " + args + " 2>&1";
-    FILE* p = popen(cmd.c_str(), "r");
-    Result r{-1, {}};
-    if (!p) return r;
-    char buf[4096];
-    while (std::size_t n = std::fread(buf, 1, sizeof buf, p)) r.output.append(buf, n);
-    const int status = pclose(p);
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    return r;
+    return trn::test::run_shell("ulimit -v 3000000; timeout 20 " + prefix + " " + trn::test::trnkit_exe() + " " + args + " 2>&1");
 }
 
 std::string quoted(const std::string& s) { return "'" + s + "'"; }

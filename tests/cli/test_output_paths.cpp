@@ -35,9 +35,7 @@ using Result = trn::test::CliResult;
 
 Result shell(const std::string& line) { return trn::test::run_shell(line); }
 
-// TRNKIT_UNDER_TEST=/path/to/an/older/trnkit runs these cases against another build (to show what
-// they catch there); by default the trnkit of this build.
-const std::string kExe = std::getenv("TRNKIT_UNDER_TEST") ? std::getenv("TRNKIT_UNDER_TEST") : TRNKIT_EXE;
+const std::string kExe = trn::test::trnkit_exe();  // TRNKIT_UNDER_TEST: another build
 Result trnkit(const std::string& args) { return shell(kExe + " " + args + " 2>&1"); }
 
 std::string slurp(const fs::path& p) {
