@@ -14,15 +14,13 @@
 #include "backend_env.hpp"
 #include "commands.hpp"
 #include "filter_model_options.hpp"
-#include "localization_report.hpp"
 #include "odometry_option.hpp"
 #include "options.hpp"
 #include "progress.hpp"
 #include "trn/error.hpp"
 #include "trn/filter/backend_choice.hpp"
-#include "trn/filter/flight_source.hpp"
-#include "trn/filter/localization.hpp"
-#include "trn/filter/visual_odometry.hpp"
+#include "trn/localize/localization.hpp"
+#include "trn/localize/report_folder.hpp"
 #include "trn/io/output_folder.hpp"
 #include "trn/registry.hpp"
 #include "trn/sim/procedural_map.hpp"
@@ -98,36 +96,32 @@ void demo(const DemoArgs& a) {
     }
     std::cerr << "\n";
 
-    const std::size_t stride = std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(preset.fps / a.rate_hz)));
-    filter::SimulatedFlightSource simulated(world, fc, stride);
-    filter::VisualOdometrySource visual(simulated, world.metres_per_pixel);
-    const bool use_visual = a.odometry == "visual";
-    filter::FlightSource& source = use_visual ? static_cast<filter::FlightSource&>(visual) : simulated;
-
-    filter::BackendScorerOptions so;
-    so.template_width = a.template_width;
-    if (a.sparse < 1) so.sampling = Sampling::random(a.sparse, a.seed);
-    filter::BackendScorer scorer(*backend, map.image.view(), so);
-    filter::FilterConfig cfg;  // the dissertation's choices: KLD sampling, logistic:0.2
-    cfg.metres_per_pixel = map.metres_per_pixel;
-    cfg.seed = a.seed;
-    cfg.init_radius_m = a.init_radius_m;
-    apply_filter_model_options(a.model, cfg);
-    filter::ParticleFilter pf(scorer, cfg);
-    const filter::LocalizationResult result = filter::run_localization(source, pf, progress_bar);
+    localize::LocalizationSpec spec;
+    spec.flight = localize::SimulatedFlight{&world, fc};
+    spec.odometry = a.odometry == "visual" ? localize::OdometryKind::Visual : localize::OdometryKind::Recorded;
+    spec.rate_hz = a.rate_hz;
+    localize::LocalizerConfig& lc = spec.localizer;  // the dissertation's choices: KLD sampling, logistic:0.2
+    lc.scoring.template_width = a.template_width;
+    if (a.sparse < 1) lc.scoring.sampling = Sampling::random(a.sparse, a.seed);
+    lc.filter.metres_per_pixel = map.metres_per_pixel;
+    lc.filter.seed = a.seed;
+    lc.filter.init_radius_m = a.init_radius_m;
+    apply_filter_model_options(a.model, lc.filter);
+    localize::RunHooks hooks;
+    hooks.progress = progress_bar;
+    const localize::LocalizationResult result = localize::run_localization(spec, map.image.view(), map.metres_per_pixel, *backend, hooks);
 
     std::cout << "DPC-PFL demo: " << preset.name << ", " << distance_km << " km at " << preset.altitude_m
               << (preset.other_altitude_m > 0 ? " and " + std::to_string(static_cast<int>(preset.other_altitude_m)) : std::string()) << " m, map "
               << a.flight_year - a.map_year << " years older than the flight, backend " << backend->info().name << ", seed " << a.seed
               << "\n";
-    LocalizationReport report;
-    report.command = "demo", report.out = out, report.force = force, report.plots = !a.no_plots, report.plot_title = preset.name;
-    report.sparse = a.sparse, report.seed = a.seed, report.filter_rate_hz = preset.fps / stride, report.template_width = a.template_width;
+    localize::ReportOptions report;
+    report.owner = "demo", report.folder_name = "--out", report.force = force, report.plots = !a.no_plots, report.plot_title = preset.name;
+    report.odometry = a.odometry;
     report.strings = {{"scenario", preset.name}};
     report.numbers = {{"map_year", static_cast<double>(a.map_year)}, {"flight_year", static_cast<double>(a.flight_year)},
                       {"init_radius_m", a.init_radius_m}};
-    record_odometry(a.odometry, use_visual ? &visual : nullptr, report);
-    report_localization(result, *backend, cfg, map.image.view(), map.metres_per_pixel, report, std::cout);
+    localize::write_localization_report(result, out, map.image.view(), map.metres_per_pixel, report, std::cout);
     std::printf("total %.1f s (maps %.1f s)\n", seconds_since(t0), maps_s);
 }
 

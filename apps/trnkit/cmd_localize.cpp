@@ -10,28 +10,27 @@
 
 #include "backend_env.hpp"
 #include "commands.hpp"
+#include "field_flags.hpp"
 #include "filter_model_options.hpp"
-#include "localization_report.hpp"
-#include "localize_inputs.hpp"
 #include "odometry_option.hpp"
 #include "options.hpp"
 #include "progress.hpp"
 #include "trn/error.hpp"
 #include "trn/filter/backend_choice.hpp"
-#include "trn/filter/flight_source.hpp"
-#include "trn/filter/localization.hpp"
-#include "trn/filter/nadir_warp.hpp"
-#include "trn/filter/visual_odometry.hpp"
-#include "trn/io/output_folder.hpp"
 #include "trn/registry.hpp"
-#include "trn/sim/air_format.hpp"
+#include "trn/filter/nadir_warp.hpp"
+#include "trn/io/output_folder.hpp"
+#include "trn/localize/air_inputs.hpp"
+#include "trn/localize/localization.hpp"
+#include "trn/localize/report_folder.hpp"
 #include "trn/sim/map.hpp"
+#include "trn/field_error.hpp"
 
 namespace trn::cli {
 namespace {
 
 struct LocalizeArgs {
-    LocalizeInputOptions inputs;  // dataset, map, resolution, camera, fps
+    localize::AirInputOptions inputs;  // dataset, map, resolution, camera, fps
     std::string backend = "fastest", conversion = "logistic:0.2", sampling = "kld", out;
     std::string odometry;  // folder (SvoX/SvoY columns) | visual (from the frames)
     std::uint64_t seed = 1;
@@ -76,19 +75,19 @@ CLI::Validator pair_in(double lo1, double hi1, double lo2, double hi2, const std
 
 void progress_bar(std::size_t done, std::size_t total) { draw_progress(done, total, "steps"); }
 
-void localize(const LocalizeArgs& a) {
+void localize_run(const LocalizeArgs& a) {
     if (a.min_particles > a.max_particles)
         throw Error("--min-particles " + std::to_string(a.min_particles) + " exceeds --max-particles " + std::to_string(a.max_particles));
     if (!a.start.empty() && !a.start_latlon.empty()) throw Error("--start and --start-latlon: give one of them, not both");
-    const LocalizeInputs in = resolve_localize_inputs(a.inputs);
+    const localize::AirInputs in = localize::resolve_air_inputs(a.inputs);
     const std::string out = a.out.empty() ? a.inputs.dataset + "/localize" : a.out;
     // The default folder comes with the dataset: a link there was planted, not chosen.
     if (a.out.empty() && std::filesystem::is_symlink(out))
         throw Error(out + ": is a symbolic link inside the dataset; trnkit does not write through it (remove it, or give --out)");
     io::check_output_folder(out, "localize", a.force);  // before the run, not after it
-    for (const std::string& n : in.notes) std::cerr << "trnkit: note: " << n << "\n";
+    for (const localize::AirInputs::Note& n : in.notes)
+        std::cerr << "trnkit: note: " << (n.field.empty() ? "" : flag_of(n.field) + " ") << flags_in(n.text) << "\n";
     const sim::Map& map = in.map;
-    const std::string& map_path = in.map_path;
     const std::string& dataset = a.inputs.dataset;
     const double mpp = map.metres_per_pixel;
     double start_x = NAN, start_y = NAN;  // NaN: the first row's MapX/MapY
@@ -114,12 +113,15 @@ void localize(const LocalizeArgs& a) {
     } else {
         backend = default_registry().create(a.backend, backend_options_from_environment());
     }
-    filter::BackendScorerOptions so;
-    so.template_width = a.template_width;
-    if (a.sparse < 1) so.sampling = Sampling::random(a.sparse, a.seed);
-    filter::BackendScorer scorer(*backend, map.image.view(), so);
-
-    filter::FilterConfig cfg;
+    localize::LocalizationSpec spec;
+    spec.flight = localize::AirFolderFlight{dataset, in.camera, in.fps, a.max_tilt_deg};
+    spec.odometry = a.odometry == "visual" ? localize::OdometryKind::Visual : localize::OdometryKind::Recorded;
+    spec.rate_hz = a.rate_hz;
+    spec.to_latlon = in.to_latlon;
+    localize::LocalizerConfig& lc = spec.localizer;
+    lc.scoring.template_width = a.template_width;
+    if (a.sparse < 1) lc.scoring.sampling = Sampling::random(a.sparse, a.seed);
+    filter::FilterConfig& cfg = lc.filter;
     cfg.metres_per_pixel = mpp;
     cfg.sampling = filter::parse_sampling_method(a.sampling);
     cfg.conversion = filter::Conversion::parse(a.conversion);
@@ -131,57 +133,30 @@ void localize(const LocalizeArgs& a) {
     cfg.reinit_radius_m = a.reinit_radius_m;
     cfg.init_heading_sd_deg = a.heading_sd_deg;
     apply_filter_model_options(a.model, cfg);
-    filter::ParticleFilter pf(scorer, cfg);
+    lc.start_x = start_x, lc.start_y = start_y;
+    lc.start_heading_rad = a.start_heading_deg * 3.14159265358979323846 / 180;
 
-    if (!(a.rate_hz > 0)) throw Error("--rate must be > 0");
-    // Without a frame rate (no flight.json, no --fps) every row is a filter step at --rate.
-    const double fps = in.fps > 0 ? in.fps : a.rate_hz;
-    const std::size_t stride = std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(fps / a.rate_hz)));
-    const std::size_t rows = filter::count_air_rows(dataset);
-    filter::AirFlightSource source(dataset, in.camera, mpp, fps, stride, (rows + stride - 1) / stride,
-                                   {map.image.width, map.image.height}, a.max_tilt_deg);
-    if (std::isnan(start_x)) {  // the start defaults to the first row's truth: refuse before the run when it has none
-        sim::AirReader first(dataset);
-        sim::AirRecord r;
-        if (first.next(r) && !std::isfinite(r.map_x))
-            throw Error("--start: required: " + dataset + "/metadata.csv has no ground truth (empty MapX,MapY) in its first row; "
-                        "give --start X,Y or --start-latlon LAT,LON");
-    }
-    for (const std::string& w : source.warnings()) std::cerr << "trnkit: warning: " << w << "\n";
-    filter::VisualOdometrySource visual(source, mpp);
-    const bool use_visual = a.odometry == "visual";
-    std::cerr << "localizing " << dataset << " (" << rows << " frames, every " << stride << ") on " << backend->info().name << ", "
-              << cfg.conversion.to_string() << ", " << filter::to_string(cfg.sampling) << " sampling, " << a.odometry << " odometry, seed "
-              << a.seed << "\n";
-    filter::LocalizationResult result;
-    try {
-        result = filter::run_localization(use_visual ? static_cast<filter::FlightSource&>(visual) : source, pf, progress_bar, start_x, start_y, a.start_heading_deg * 3.14159265358979323846 / 180);
-    } catch (const Error& e) {
-        if (std::string(e.what()).rfind(dataset, 0) == 0) throw;  // the flight source's own errors name their place
-        throw Error(source.position() + ": " + e.what());           // which row of the flight the library choked on
-    }
-    source.check_unchanged();  // frames of a dataset replaced mid-run are not this flight's: no report
-
-    if (in.to_latlon)  // the estimates also as latitude / longitude
-        for (filter::LocalizationRow& r : result.rows) {
-            const sim::LatLon ll = in.to_latlon(r.estimate_x, r.estimate_y);
-            r.estimate_lat = ll.latitude_deg, r.estimate_lon = ll.longitude_deg;
-        }
+    localize::RunHooks hooks;
+    hooks.warning = [](const std::string& w) { std::cerr << "trnkit: warning: " << w << "\n"; };
+    hooks.started = [&](const localize::RunInfo& run) {
+        std::cerr << "localizing " << dataset << " (" << run.frames << " frames, every " << run.stride << ") on " << backend->info().name << ", "
+                  << cfg.conversion.to_string() << ", " << filter::to_string(cfg.sampling) << " sampling, " << a.odometry << " odometry, seed "
+                  << a.seed << "\n";
+    };
+    hooks.progress = progress_bar;
+    const localize::LocalizationResult result = localize::run_localization(spec, map.image.view(), mpp, *backend, hooks);
     const bool has_latlon = in.to_latlon && !result.rows.empty();
 
-    // The start actually used, for the record (the first row's truth when not given).
-    const double used_start_x = std::isfinite(start_x) || result.rows.empty() ? start_x : result.rows.front().truth_x;
-    const double used_start_y = std::isfinite(start_y) || result.rows.empty() ? start_y : result.rows.front().truth_y;
-    LocalizationReport report;
-    report.command = "localize", report.out = out, report.force = a.force, report.plots = !a.no_plots, report.plot_title = in.scenario;
-    report.sparse = a.sparse, report.seed = a.seed, report.filter_rate_hz = fps / stride, report.template_width = a.template_width;
-    report.strings = {{"backend_requested", a.backend}, {"dataset", dataset}, {"map", map_path},
+    localize::ReportOptions report;
+    report.owner = "localize", report.folder_name = "--out", report.force = a.force, report.plots = !a.no_plots, report.plot_title = in.scenario;
+    report.odometry = a.odometry;
+    report.strings = {{"backend_requested", a.backend}, {"dataset", dataset}, {"map", in.map_path},
                       {"start", a.start.empty() && a.start_latlon.empty() ? "first row's MapX,MapY" : !a.start.empty() ? "--start " + a.start : "--start-latlon " + a.start_latlon},
                       {"start_heading", std::isnan(a.start_heading_deg) ? "first magnetometer reading" : "--start-heading-deg"},
                       {"flight_json", in.has_flight_json ? "used" : "absent (camera, map and resolution from options)"},
                       {"georeference", in.georeference.empty() ? "none" : in.georeference}};
     report.numbers = {{"init_radius_m", cfg.init_radius_m}, {"reinit_radius_m", cfg.reinit_radius_m},
-                      {"start_x", used_start_x}, {"start_y", used_start_y}, {"particles", static_cast<double>(a.particles)},
+                      {"start_x", result.run.start_x}, {"start_y", result.run.start_y}, {"particles", static_cast<double>(a.particles)},
                       {"min_particles", static_cast<double>(a.min_particles)}, {"max_particles", static_cast<double>(a.max_particles)},
                       {"rate_hz", a.rate_hz}, {"sparse", a.sparse}, {"metres_per_pixel", mpp},
                       {"start_heading_deg", a.start_heading_deg}, {"heading_sd_deg", cfg.init_heading_sd_deg},
@@ -193,8 +168,16 @@ void localize(const LocalizeArgs& a) {
         std::snprintf(ll, sizeof ll, "lat %.7f lon %.7f", result.rows.back().estimate_lat, result.rows.back().estimate_lon);
         report.after_summary = "final estimate: " + std::string(ll) + " (" + in.georeference + ")\n";
     }
-    record_odometry(a.odometry, use_visual ? &visual : nullptr, report);
-    report_localization(result, *backend, cfg, map.image.view(), mpp, report, std::cout);
+    localize::write_localization_report(result, out, map.image.view(), mpp, report, std::cout);
+}
+
+// Library errors name the spec's fields; here they name localize's flags.
+void localize(const LocalizeArgs& a) {
+    try {
+        localize_run(a);
+    } catch (const FieldError& e) {
+        throw Error(with_flags(e));
+    }
 }
 
 }  // namespace
@@ -206,7 +189,7 @@ void add_localize_command(CLI::App& app) {
     cmd->add_option("--map", a->inputs.map,
                     "Localization map image (default: the one flight.json names); a .tif/.tiff is read as a GeoTIFF (GDAL): "
                     "resolution and latitude/longitude from its georeference");
-    cmd->add_option("--mpp", a->inputs.mpp, "Map resolution, metres per pixel (default: flight.json or the GeoTIFF)")->check(real_in(0, 1000, Open::low));
+    cmd->add_option("--mpp", a->inputs.metres_per_pixel, "Map resolution, metres per pixel (default: flight.json or the GeoTIFF)")->check(real_in(0, 1000, Open::low));
     cmd->add_option("--hfov-deg", a->inputs.hfov_deg, "Camera horizontal field of view, degrees (default: flight.json)")
         ->check(real_in(1, 170, Open::both));
     cmd->add_option("--focal-px", a->inputs.focal_px, "Camera focal length in pixels of frames --focal-width px wide (instead of --hfov-deg)")

@@ -1,10 +1,34 @@
 #include "flight_outputs.hpp"
 
 #include <cmath>
+#include <map>
+#include <string>
+
+#include "trn/localize/report.hpp"
 
 namespace trn::experiments {
 
-double get(const Json& result, const char* key) { return result.at(key).is_null() ? NAN : result.at(key).get<double>(); }
+double get(const Json& result, const char* key) {
+    static const std::map<std::string, std::string> kOldNames{{"filter_error_slope_m_per_km", "filter_slope_m_per_km"},
+                                                              {"odometry_error_slope_m_per_km", "odometry_slope_m_per_km"}};
+    const auto old = kOldNames.find(key);
+    const Json& v = !result.contains(key) && old != kOldNames.end() && result.contains(old->second) ? result.at(old->second) : result.at(key);
+    return v.is_null() ? NAN : v.get<double>();
+}
+
+Json flight_result(const localize::LocalizationSummary& s) {
+    auto num = [](double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); };
+    Json j;
+    for (const auto& [key, value] : localize::error_numbers(s)) j[key] = num(value);
+    j["steps"] = s.steps;
+    j["distance_m"] = s.distance_m;
+    j["mean_particles"] = s.mean_particles;
+    j["reinitialisations"] = s.counters.reinitialisations;
+    j["lock_lost_events"] = s.counters.lock_lost_events;
+    j["weak_contrast_steps"] = s.counters.weak_contrast_steps;
+    j["odometry_inconsistent_steps"] = s.counters.odometry_inconsistent_steps;
+    return j;
+}
 
 double mean_of(const std::vector<Json>& outputs, const char* key, const FlightCell& cell) {
     double sum = 0;

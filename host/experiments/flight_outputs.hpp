@@ -6,11 +6,18 @@
 #include <vector>
 
 #include "study.hpp"
+#include "trn/localize/localization.hpp"
 
 namespace trn::experiments {
 
-// A number from a job's result; NaN where the job stored null (a non-finite value).
+// A number from a job's result; NaN where the job stored null (a non-finite value). Results written
+// before the slopes took summary.json's names (filter_slope_m_per_km, odometry_slope_m_per_km) are
+// read under the new names too.
 double get(const Json& result, const char* key);
+
+// A flight job's result numbers under the names summary.json uses (localize/report.hpp), plus
+// steps, distance, mean particles and the lock monitor's counters; a study adds its own.
+Json flight_result(const localize::LocalizationSummary& summary);
 
 // Which jobs a mean is taken over: "" matches any preset / conversion; map ages in [min_age, max_age]
 // (a job without map_age, e.g. odometry's, counts as age 0).

@@ -18,11 +18,8 @@
 #include "flight_settings.hpp"
 #include "study.hpp"
 #include "table.hpp"
-#include "trn/filter/flight_source.hpp"
-#include "trn/filter/localization.hpp"
-#include "trn/filter/report.hpp"
-#include "trn/filter/scorer.hpp"
-#include "trn/filter/visual_odometry.hpp"
+#include "trn/localize/localization.hpp"
+#include "trn/localize/report.hpp"
 #include "table_3_13.hpp"
 #include "world.hpp"
 
@@ -64,41 +61,27 @@ Json fly(const Json& c, const std::string& preset_name, const std::string& conve
     fc.scenario = preset;
     fc.seed = mix_seed(ctx.seed, 100 + run);
     fc.frames = static_cast<std::size_t>(std::llround(c.at("distance_m").get<double>() / preset.speed_mps * preset.fps));
-    const std::size_t stride = std::max<std::size_t>(1, std::lround(preset.fps / c.at("rate_hz").get<double>()));
-    filter::SimulatedFlightSource simulated(*world, fc, stride);
-    filter::VisualOdometrySource visual(simulated, world->metres_per_pixel);
-    filter::FlightSource& source = visual_odometry ? static_cast<filter::FlightSource&>(visual) : simulated;
-    filter::BackendScorerOptions so;
-    so.template_width = c.at("template_width");
-    filter::BackendScorer scorer(ctx.backend, map->image.view(), so);
-    filter::FilterConfig cfg;
+    localize::LocalizationSpec spec;
+    spec.flight = localize::SimulatedFlight{world.get(), fc};
+    spec.odometry = visual_odometry ? localize::OdometryKind::Visual : localize::OdometryKind::Recorded;
+    spec.rate_hz = c.at("rate_hz").get<double>();
+    spec.localizer.scoring.template_width = c.at("template_width");
+    filter::FilterConfig& cfg = spec.localizer.filter;
     cfg.metres_per_pixel = map->metres_per_pixel;
     cfg.conversion = filter::Conversion::parse(conversion);
     cfg.seed = mix_seed(ctx.seed, 200 + run);
     cfg.init_radius_m = c.at("init_radius_m");
-    filter::ParticleFilter pf(scorer, cfg);
-    const filter::LocalizationResult r = filter::run_localization(source, pf);
-    const filter::LocalizationSummary& s = r.summary;
+    const localize::LocalizationResult r = localize::run_localization(spec, map->image.view(), map->metres_per_pixel, ctx.backend);
+    const localize::LocalizationSummary& s = r.summary;
     std::filesystem::create_directories(ctx.job_folder);
-    filter::write_rows_csv(ctx.job_folder + "/localization.csv", r.rows);
-    if (plots) filter::plot_run(ctx.job_folder, r.rows, s, map->image.view(), map->metres_per_pixel, preset_name + " " + conversion);
-    auto num = [](double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); };
-    Json result = {{"filter_mean_error_m", num(s.filter_mean_error_m)},
-            {"odometry_mean_error_m", num(s.odometry_mean_error_m)},
-            {"filter_final_error_m", num(s.filter_final_error_m)},
-            {"odometry_final_error_m", num(s.odometry_final_error_m)},
-            {"filter_slope_m_per_km", num(s.filter_error_slope_m_per_km)},
-            {"odometry_slope_m_per_km", num(s.odometry_error_slope_m_per_km)},
-            {"steps", s.steps},
-            {"distance_m", s.distance_m},
-            {"mean_particles", s.mean_particles},
-            {"particles_evaluated", s.mean_particles * s.steps},
-            {"reinitialisations", s.counters.reinitialisations},
-            {"lock_lost_events", s.counters.lock_lost_events},
-            {"weak_contrast_steps", s.counters.weak_contrast_steps},
-            {"odometry_inconsistent_steps", s.counters.odometry_inconsistent_steps}};
-    if (visual_odometry)
-        result["visual_odometry_steps"] = {{"features", visual.counts().features}, {"phase", visual.counts().phase}, {"lost", visual.counts().lost}};
+    localize::write_rows_csv(ctx.job_folder + "/localization.csv", r.rows);
+    if (plots) localize::plot_run(ctx.job_folder, r.rows, s, map->image.view(), map->metres_per_pixel, preset_name + " " + conversion);
+    Json result = flight_result(s);
+    result["particles_evaluated"] = s.mean_particles * s.steps;
+    if (visual_odometry) {
+        const auto& counts = r.run.visual_odometry_counts;
+        result["visual_odometry_steps"] = {{"features", counts.features}, {"phase", counts.phase}, {"lost", counts.lost}};
+    }
     return result;
 }
 
@@ -376,7 +359,7 @@ public:
         for (const Json& out : o) {
             const Json& r = out.at("result");
             const double ff = get(r, "filter_final_error_m"), of = get(r, "odometry_final_error_m");
-            const double fs = get(r, "filter_slope_m_per_km"), os = get(r, "odometry_slope_m_per_km");
+            const double fs = get(r, "filter_error_slope_m_per_km"), os = get(r, "odometry_error_slope_m_per_km");
             // Job files from before issue 12 have no lock counters: "-" rather than a made-up 0.
             const std::string lost = r.contains("lock_lost_events") ? fmt(get(r, "lock_lost_events"), 0) : "-";
             t.rows.push_back({out.at("params").at("id").get<std::string>(), fmt(get(r, "distance_m") / 1000), fmt(ff), fmt(of), fmt(of / ff),

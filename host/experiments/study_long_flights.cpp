@@ -15,10 +15,8 @@
 #include "flight_settings.hpp"
 #include "study.hpp"
 #include "table.hpp"
-#include "trn/filter/flight_source.hpp"
-#include "trn/filter/localization.hpp"
-#include "trn/filter/report.hpp"
-#include "trn/filter/scorer.hpp"
+#include "trn/localize/localization.hpp"
+#include "trn/localize/report.hpp"
 #include "world.hpp"
 
 namespace trn::experiments {
@@ -61,39 +59,29 @@ Json fly(const Json& c, const std::string& preset_name, double distance_m, int t
         while (sim.next(f)) alt_min = std::min(alt_min, f.truth.altitude_m), alt_max = std::max(alt_max, f.truth.altitude_m);
     }
 
-    const std::size_t stride = std::max<std::size_t>(1, std::lround(preset.fps / c.at("rate_hz").get<double>()));
-    filter::SimulatedFlightSource source(*world, fc, stride);
-    filter::BackendScorerOptions so;
-    so.template_width = template_width;
-    filter::BackendScorer scorer(ctx.backend, map->image.view(), so);
-    filter::FilterConfig cfg;
+    localize::LocalizationSpec spec;
+    spec.flight = localize::SimulatedFlight{world.get(), fc};
+    spec.rate_hz = c.at("rate_hz").get<double>();
+    spec.localizer.scoring.template_width = template_width;
+    filter::FilterConfig& cfg = spec.localizer.filter;
     cfg.metres_per_pixel = map->metres_per_pixel;
     cfg.conversion = filter::Conversion::parse(c.at("conversion").get<std::string>());
     cfg.init_radius_m = c.at("init_radius_m");
     cfg.seed = mix_seed(ctx.seed, 200 + run);
-    filter::ParticleFilter pf(scorer, cfg);
-    const filter::LocalizationResult r = filter::run_localization(source, pf);
-    const filter::LocalizationSummary& s = r.summary;
+    const localize::LocalizationResult r = localize::run_localization(spec, map->image.view(), map->metres_per_pixel, ctx.backend);
+    const localize::LocalizationSummary& s = r.summary;
     std::filesystem::create_directories(ctx.job_folder);
-    filter::write_rows_csv(ctx.job_folder + "/localization.csv", r.rows);
-    if (ctx.plots) filter::plot_run(ctx.job_folder, r.rows, s, map->image.view(), map->metres_per_pixel, preset_name);
+    localize::write_rows_csv(ctx.job_folder + "/localization.csv", r.rows);
+    if (ctx.plots) localize::plot_run(ctx.job_folder, r.rows, s, map->image.view(), map->metres_per_pixel, preset_name);
     auto num = [](double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); };
-    return {{"filter_mean_error_m", num(s.filter_mean_error_m)},
-            {"odometry_mean_error_m", num(s.odometry_mean_error_m)},
-            {"filter_final_error_m", num(s.filter_final_error_m)},
-            {"odometry_final_error_m", num(s.odometry_final_error_m)},
-            {"filter_slope_m_per_km", num(s.filter_error_slope_m_per_km)},
-            {"odometry_slope_m_per_km", num(s.odometry_error_slope_m_per_km)},
-            {"steps", s.steps},
-            {"distance_m", s.distance_m},
-            {"altitude_min_m", alt_min},
-            {"altitude_max_m", alt_max},
-            {"map_edge_m", size_m},
-            {"mean_particles", s.mean_particles},
-            // Filter time per step (sampling + scoring + estimate; not rendering) and scoring alone.
-            {"filter_ms_per_step", num(s.frames_per_second > 0 ? 1000 / s.frames_per_second : NAN)},
-            {"score_ms_per_step", num(s.mean_score_ms)},
-            {"lock_lost_events", s.counters.lock_lost_events}};
+    Json result = flight_result(s);
+    result["altitude_min_m"] = alt_min;
+    result["altitude_max_m"] = alt_max;
+    result["map_edge_m"] = size_m;
+    // Filter time per step (sampling + scoring + estimate; not rendering) and scoring alone.
+    result["filter_ms_per_step"] = num(s.frames_per_second > 0 ? 1000 / s.frames_per_second : NAN);
+    result["score_ms_per_step"] = num(s.mean_score_ms);
+    return result;
 }
 
 std::vector<std::string> strings(const Json& j) { return j.get<std::vector<std::string>>(); }
@@ -132,7 +120,7 @@ public:
             const double ff = get(r, "filter_final_error_m"), of = get(r, "odometry_final_error_m");
             t.rows.push_back({out.at("params").at("id").get<std::string>(), fmt(get(r, "distance_m") / 1000),
                               fmt(get(r, "altitude_min_m"), 0) + "-" + fmt(get(r, "altitude_max_m"), 0), fmt(ff), fmt(of), fmt(of / ff),
-                              fmt(get(r, "filter_slope_m_per_km")), fmt(get(r, "odometry_slope_m_per_km")), fmt(get(r, "filter_mean_error_m")),
+                              fmt(get(r, "filter_error_slope_m_per_km")), fmt(get(r, "odometry_error_slope_m_per_km")), fmt(get(r, "filter_mean_error_m")),
                               fmt(get(r, "odometry_mean_error_m")), fmt(get(r, "lock_lost_events"), 0), fmt(out.value("wall_s", NAN), 0)});
         }
         t.write(mc.out, "table_long_flights");

@@ -8,8 +8,7 @@
 
 #include "study.hpp"
 #include "table.hpp"
-#include "trn/filter/particle_filter.hpp"
-#include "trn/filter/scorer.hpp"
+#include "trn/localize/localizer.hpp"
 #include "world.hpp"
 
 namespace trn::experiments {
@@ -55,21 +54,20 @@ public:
         const double cx = size_m / 2 / mpp + rng.uniform(-200, 200) / mpp, cy = size_m / 2 / mpp + rng.uniform(-200, 200) / mpp;
         double x = cx - dx * flight_m / 2, y = cy - dy * flight_m / 2;
 
-        filter::BackendScorerOptions so;
-        so.template_width = c.at("template_width");
-        filter::BackendScorer scorer(ctx.backend, map->image.view(), so);
-        filter::FilterConfig fc;
+        localize::LocalizerConfig lc;
+        lc.scoring.template_width = c.at("template_width");
+        filter::FilterConfig& fc = lc.filter;
         fc.metres_per_pixel = mpp;
         fc.sampling = filter::parse_sampling_method(p.at("method").get<std::string>());
         fc.fixed_particles = c.at("particles");
         fc.max_particles = c.at("particles");
         fc.init_radius_m = fc.reinit_radius_m = c.at("search_radius_m");
         fc.seed = mix_seed(ctx.seed, 6000 + start);
-        filter::ParticleFilter pf(scorer, fc);
-        pf.initialise(x, y, heading);
+        lc.start_x = x, lc.start_y = y, lc.start_heading_rad = heading;
+        localize::Localizer localizer(map->image.view(), mpp, ctx.backend, lc);
 
         const auto t0 = std::chrono::steady_clock::now();
-        filter::StepReport report;
+        localize::Estimate report;
         double evaluated = 0;
         for (int it = 0; it < iterations; ++it) {
             x += dx * step_m;
@@ -77,22 +75,22 @@ public:
             // Odometry with 3% scale noise and 1 m jitter, magnetometer within about 1 degree.
             const double d = step_m * (1 + 0.03 * rng.normal());
             const double h_odo = heading + 0.01 * rng.normal();
-            filter::FilterInput in;
+            localize::Observation in;
             in.odometry_east_m = d * std::sin(h_odo) + rng.normal();
             in.odometry_north_m = d * std::cos(h_odo) + rng.normal();
             in.heading_rad = heading + (M_PI / 180) * rng.normal();
             const GrayImage frame = render_at(*world, camera, x, y, heading, altitude, mix_seed(ctx.seed, 7000 + start * 1000 + it));
             in.frame = frame.view();
             in.map_px_per_camera_px = scale;
-            report = pf.step(in);
+            report = localizer.step(in);
             evaluated += report.particles;
         }
         const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        const filter::Estimate& e = report.estimate;
+        const localize::Estimate& e = report;
         const double best_err = std::hypot(e.best_x - x, e.best_y - y) * mpp, mean_err = std::hypot(e.x - x, e.y - y) * mpp;
         return {{"end_particles", report.particles}, {"seconds", wall},     {"best_error_m", best_err},
                 {"estimate_error_m", mean_err},     {"evaluated", evaluated}, {"success", best_err <= c.at("success_m").get<double>()},
-                {"reinitialisations", pf.counters().reinitialisations}};
+                {"reinitialisations", localizer.counters().reinitialisations}};
     }
 
     std::string merge(const std::vector<Json>& outputs, const MergeContext& mc) const override {

@@ -6,6 +6,7 @@
 #include "py_backend.hpp"
 #include "py_energy.hpp"
 #include "py_errors.hpp"
+#include "py_localize.hpp"
 #include "trn/build_info.hpp"
 
 PYBIND11_MODULE(trnkit, m) {
@@ -15,4 +16,5 @@ PYBIND11_MODULE(trnkit, m) {
     trn::py::register_errors(m);
     trn::py::register_backend(m);
     trn::py::register_energy(m);
+    trn::py::register_localize(m);
 }

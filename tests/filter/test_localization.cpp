@@ -9,11 +9,13 @@
 #include <string>
 #include <vector>
 
-#include "trn/filter/localization.hpp"
-#include "trn/filter/report.hpp"
+#include "trn/localize/localization.hpp"
+#include "trn/localize/report.hpp"
 
-namespace trn::filter {
+namespace trn::localize {
 namespace {
+
+using filter::FilterCounters;
 
 TEST(Localization, FittedSlopeIsExactOnALine) {
     EXPECT_NEAR(fitted_slope({0, 1, 2, 3}, {1, 3, 5, 7}), 2.0, 1e-12);
@@ -122,4 +124,4 @@ TEST(Localization, RowsCsvHasTheLockMonitorsColumns) {
 }
 
 }  // namespace
-}  // namespace trn::filter
+}  // namespace trn::localize

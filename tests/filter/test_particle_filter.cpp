@@ -7,8 +7,8 @@
 
 #include "filter_test_world.hpp"
 #include "trn/error.hpp"
-#include "trn/filter/localization.hpp"
 #include "trn/filter/particle_filter.hpp"
+#include "trn/localize/localization.hpp"
 
 namespace trn::filter {
 namespace {
@@ -16,6 +16,8 @@ namespace {
 using testing::short_flight;
 constexpr double kHalfPi = 1.5707963267948966;
 using testing::test_world;
+using localize::LocalizationResult;
+using localize::LocalizationRow;
 
 struct Rig {
     std::unique_ptr<Backend> backend = default_registry().create("cpu");
@@ -31,11 +33,20 @@ FilterConfig small_config(std::uint64_t seed = 1) {
     return c;
 }
 
+// A whole flight through the Localizer, as every front end runs one.
+LocalizationResult localize_flight(FlightSource& source, const FilterConfig& cfg, double start_x = NAN, double start_y = NAN,
+                                   double start_heading_rad = NAN) {
+    const std::unique_ptr<Backend> backend = default_registry().create("cpu");
+    localize::LocalizerConfig lc;
+    lc.filter = cfg;
+    lc.start_x = start_x, lc.start_y = start_y, lc.start_heading_rad = start_heading_rad;
+    localize::Localizer localizer(test_world().map.image.view(), test_world().map.metres_per_pixel, *backend, lc);
+    return localize::run_localization(source, localizer);
+}
+
 LocalizationResult run_flight(const FilterConfig& cfg, const sim::FlightConfig& flight, double start_x = NAN, double start_y = NAN) {
-    Rig rig;
-    ParticleFilter pf(rig.scorer, cfg);
     SimulatedFlightSource src(test_world().world, flight, 10);
-    return run_localization(src, pf, {}, start_x, start_y);
+    return localize_flight(src, cfg, start_x, start_y);
 }
 
 LocalizationResult run(const FilterConfig& cfg, double seconds, std::uint64_t flight_seed = 5) {
@@ -169,13 +180,11 @@ private:
 };
 
 TEST(ParticleFilter, BadInputIsCountedAndSurvived) {
-    Rig rig;
     FilterConfig cfg = small_config();
     cfg.reinit_radius_m = 20;
-    ParticleFilter pf(rig.scorer, cfg);
     SimulatedFlightSource inner(test_world().world, short_flight(10), 10);
     SpoiledFlight src(inner);
-    const LocalizationResult r = run_localization(src, pf);
+    const LocalizationResult r = localize_flight(src, cfg);
     ASSERT_EQ(r.rows.size(), 50u);
     EXPECT_EQ(r.summary.counters.odometry_lost, 4u);
     EXPECT_EQ(r.summary.counters.frames_missing, 1u);
@@ -229,13 +238,11 @@ TEST(ParticleFilter, InitialParticlesLieWithinTheInitRadiusAroundTheHeadingPrior
 }
 
 TEST(ParticleFilter, RunLocalizationStartsAtTheGivenPositionAndHeading) {
-    Rig rig;
     FilterConfig cfg = small_config();
     cfg.init_radius_m = 10;
     cfg.init_heading_sd_deg = 1;
-    ParticleFilter pf(rig.scorer, cfg);
     SimulatedFlightSource src(test_world().world, short_flight(0.2), 10);
-    const LocalizationResult r = run_localization(src, pf, {}, 260, 240, 1.0);
+    const LocalizationResult r = localize_flight(src, cfg, 260, 240, 1.0);
     ASSERT_FALSE(r.rows.empty());
     EXPECT_NEAR(r.rows.front().odometry_x, 260, 1e-9);  // odometry is placed at the given start
     EXPECT_NEAR(r.rows.front().odometry_y, 240, 1e-9);

@@ -9,7 +9,6 @@
 
 #include "filter_test_world.hpp"
 #include "trn/error.hpp"
-#include "trn/filter/localization.hpp"
 #include "trn/filter/visual_odometry.hpp"
 #include "trn/sim/render.hpp"
 

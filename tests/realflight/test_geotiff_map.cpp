@@ -188,6 +188,6 @@ TEST_F(RealAirFolder, LocalizesOnAGeoTiffMapAndWritesLatLon) {
     // --mpp that contradicts the geotransform is refused.
     const auto bad = localize("--map " + tif + " --hfov-deg 60 --mpp 0.6", 1, dir_ + "/bad");
     EXPECT_EQ(bad.code, 1) << bad.output;
-    EXPECT_NE(bad.output.find("--mpp 0.6 contradicts " + tif), std::string::npos) << bad.output;
+    EXPECT_NE(bad.output.find("--mpp: 0.6 contradicts " + tif), std::string::npos) << bad.output;
 #endif
 }

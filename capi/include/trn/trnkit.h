@@ -1,5 +1,5 @@
-/* trnkit C API: the accelerated scorer (devices, map upload, plan + score, Sobel) and the energy
- * integration, for C and for anything with a C FFI.
+/* trnkit C API: the accelerated scorer (devices, map upload, plan + score, Sobel), the energy
+ * integration and the localizer (with AIR-folder reading), for C and for anything with a C FFI.
  *
  * Conventions
  *  - Every call that can fail returns a trn_status; TRN_OK is 0. On failure trn_last_error()
@@ -197,6 +197,87 @@ TRN_C_API trn_status trn_energy_frame_get(const trn_energy_result* result, size_
 /* Warning index (valid as long as the result), or NULL when out of range. */
 TRN_C_API const char* trn_energy_warning(const trn_energy_result* result, size_t index);
 TRN_C_API void trn_energy_result_destroy(trn_energy_result* result);
+
+/* ---- localization ------------------------------------------------------------------------- */
+/* The online DPC-PFL localizer (C++: trn::localize::Localizer): built once from the map, a backend
+ * and a config; stepped once per camera frame with what the other sensors said since the previous
+ * one. Map pixels (x east, y south, centres at integers), radians clockwise from north. The same
+ * inputs give the same estimates as `trnkit localize`, bit for bit. */
+typedef struct trn_localizer trn_localizer;
+typedef struct trn_localizer_config {
+    double start_x, start_y;     /* map pixels: the last known position (required) */
+    double start_heading_rad;    /* centre of the initial headings; NaN: the first step's heading */
+    double camera_hfov_deg;      /* horizontal field of view; needed when steps give altitude or attitude */
+    double max_tilt_deg;         /* steps tilted further from nadir are not scored (10) */
+    int template_width;          /* frames are downscaled to this width before scoring (160; 0: full) */
+    double sparse;               /* share of template pixels scored, (0, 1] (1: dense) */
+    uint64_t seed;               /* the filter's random seed (1): same seed, same run */
+    const char* conversion;      /* similarity -> probability: "logistic:0.2" (NULL), "linear", "softmax", "rectifying:D" */
+    const char* sampling;        /* "kld" (NULL), "importance", "rejection" */
+    size_t min_particles, max_particles; /* KLD bounds (100, 2000; the initial set is max_particles) */
+    size_t particles;            /* importance / rejection: fixed count (1000) */
+    double init_radius_m;        /* initial particles uniform within this radius of the start (300) */
+    double reinit_radius_m;      /* re-initialisation radius after a collapse (300) */
+} trn_localizer_config;
+/* The C++ defaults; start_x, start_y NaN (to be set). */
+TRN_C_API trn_localizer_config trn_localizer_config_default(void);
+
+typedef struct trn_observation {
+    const uint8_t* frame;        /* grey camera frame as taken; NULL: no frame this step */
+    int width, height;
+    ptrdiff_t stride;            /* bytes per row, >= width */
+    double map_px_per_camera_px; /* the frame's scale; NaN: from altitude_agl_m and camera_hfov_deg */
+    double altitude_agl_m;       /* height above the ground, metres */
+    double odometry_east_m, odometry_north_m; /* displacement since the previous step; NaN: lost */
+    double heading_rad;          /* compass heading; NaN: none this step */
+    int has_attitude;            /* nonzero: roll/pitch measured, a tilted frame is warped to nadir */
+    double roll_rad, pitch_rad;
+} trn_observation;
+/* No frame, every number NaN, no attitude. */
+TRN_C_API trn_observation trn_observation_default(void);
+
+typedef struct trn_estimate {
+    double x, y, yaw;             /* weighted mean: map pixels, radians */
+    double best_x, best_y, best_yaw, best_ncc; /* the best-scoring particle */
+    double spread_m;              /* weighted rms distance of the particles from (x, y) */
+    size_t particles, off_map;    /* scored this step / of them without a valid score */
+    int frame_missing, too_oblique, odometry_lost, reinitialised;
+    double tilt_deg;              /* of the optical axis from the vertical (0 without attitude) */
+    const char* lock_state;       /* "none", "ok", "weak", "inconsistent", "fix", "lost" (static) */
+    double lock_contrast, lock_drift_m; /* the lock monitor's evidence (NaN: not assessed) */
+    double score_ms, step_ms;     /* wall time of the scoring / of the whole step */
+} trn_estimate;
+
+/* The map (8-bit grey, row stride in bytes) is uploaded to the backend here and need not outlive the
+ * call; the localizer keeps its backend alive. */
+TRN_C_API trn_status trn_localizer_create(trn_backend* backend, const uint8_t* map, int width, int height, ptrdiff_t stride,
+                                          double metres_per_pixel, const trn_localizer_config* config, trn_localizer** out);
+TRN_C_API trn_status trn_localizer_step(trn_localizer* localizer, const trn_observation* observation, trn_estimate* out);
+TRN_C_API void trn_localizer_destroy(trn_localizer* localizer);
+
+/* ---- images and recorded flights ---------------------------------------------------------- */
+typedef struct trn_image trn_image;
+/* Reads an image file (PNG, JPEG, TIFF ...) as 8-bit grey. */
+TRN_C_API trn_status trn_image_load(const char* path, trn_image** out);
+/* Pixels valid as long as the image. */
+TRN_C_API trn_status trn_image_pixels(const trn_image* image, const uint8_t** pixels, int* width, int* height, ptrdiff_t* stride);
+TRN_C_API void trn_image_destroy(trn_image* image);
+
+/* An AIR flight folder (metadata.csv + frames) read row by row as a robot's sensors would feed the
+ * localizer: trn_air_row.observation is ready for trn_localizer_step (frame as taken, attitude,
+ * altitude, compass heading, the odometry since the previous row). */
+typedef struct trn_air_reader trn_air_reader;
+typedef struct trn_air_row {
+    size_t row;                   /* 0-based row of metadata.csv */
+    const char* filename;         /* valid until the next call */
+    const char* image_error;      /* "" when the frame loaded, else why not (then observation.frame is NULL) */
+    trn_observation observation;  /* its frame valid until the next call */
+    double truth_x, truth_y;      /* MapX/MapY, map pixels (NaN: none) */
+} trn_air_row;
+TRN_C_API trn_status trn_air_reader_open(const char* folder, trn_air_reader** out);
+/* *has_row = 1 and *out filled, or *has_row = 0 at the end. */
+TRN_C_API trn_status trn_air_reader_next(trn_air_reader* reader, trn_air_row* out, int* has_row);
+TRN_C_API void trn_air_reader_destroy(trn_air_reader* reader);
 
 #ifdef __cplusplus
 }

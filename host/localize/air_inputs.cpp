@@ -1,4 +1,4 @@
-#include "localize_inputs.hpp"
+#include "trn/localize/air_inputs.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -6,10 +6,11 @@
 #include <memory>
 
 #include "trn/error.hpp"
+#include "trn/field_error.hpp"
 #include "trn/io/geotiff.hpp"
 #include "trn/sim/air_format.hpp"
 
-namespace trn::cli {
+namespace trn::localize {
 namespace {
 
 constexpr double kDeg = 180.0 / 3.14159265358979323846;
@@ -30,20 +31,20 @@ std::array<double, 2> origin_latlon_to_pixel(const sim::GeoOrigin& o, double mpp
 
 // The horizontal field of view the options give (0: none). A focal length is in pixels of a frame
 // of a stated width, so frames of any width get their own focal length from it.
-double option_hfov(const LocalizeInputOptions& o) {
-    if (o.hfov_deg > 0 && o.focal_px > 0) throw Error("--hfov-deg and --focal-px: give one of them, not both");
+double option_hfov(const AirInputOptions& o) {
+    if (o.hfov_deg > 0 && o.focal_px > 0) throw FieldError("hfov_deg", "give `hfov_deg` or `focal_px`, not both");
     if ((o.focal_px > 0) != (o.focal_width > 0))
-        throw Error("--focal-px and --focal-width go together: the focal length in pixels of frames that many pixels wide");
+        throw FieldError("focal_px", "`focal_px` and `focal_width` go together: the focal length in pixels of frames that many pixels wide");
     if (o.focal_px > 0) return 2 * std::atan(0.5 * o.focal_width / o.focal_px) * kDeg;
     return o.hfov_deg;
 }
 
 }  // namespace
 
-LocalizeInputs resolve_localize_inputs(const LocalizeInputOptions& o) {
+AirInputs resolve_air_inputs(const AirInputOptions& o) {
     namespace fs = std::filesystem;
-    if (!fs::is_directory(o.dataset)) throw Error("--dataset " + o.dataset + ": not a folder");
-    LocalizeInputs in;
+    if (!fs::is_directory(o.dataset)) throw FieldError("dataset", o.dataset + ": not a folder");
+    AirInputs in;
     const std::string info_path = o.dataset + "/flight.json";
     in.has_flight_json = fs::exists(info_path);
     const double hfov = option_hfov(o);
@@ -55,21 +56,22 @@ LocalizeInputs resolve_localize_inputs(const LocalizeInputOptions& o) {
         in.scenario = info.scenario;
         in.camera = info.camera;
         in.fps = info.fps;
-        if (!o.map.empty() && !info.map_file.empty()) in.notes.push_back("--map " + o.map + " overrides flight.json's map_file " + info.map_file);
-        if (o.mpp > 0 && o.mpp != info.metres_per_pixel)
-            in.notes.push_back("--mpp " + number(o.mpp) + " overrides flight.json's metres_per_pixel " + number(info.metres_per_pixel));
+        if (!o.map.empty() && !info.map_file.empty()) in.notes.push_back({"map", o.map + " overrides flight.json's map_file " + info.map_file});
+        if (o.metres_per_pixel > 0 && o.metres_per_pixel != info.metres_per_pixel)
+            in.notes.push_back({"metres_per_pixel", number(o.metres_per_pixel) + " overrides flight.json's metres_per_pixel " + number(info.metres_per_pixel)});
         if (hfov > 0 && std::fabs(hfov - info.camera.hfov_deg) > 1e-9)
-            in.notes.push_back((o.focal_px > 0 ? "--focal-px/--focal-width (hfov " + number(hfov) + " deg)" : "--hfov-deg " + number(hfov)) +
-                               " overrides flight.json's camera.hfov_deg " + number(info.camera.hfov_deg));
-        if (o.fps > 0 && o.fps != info.fps) in.notes.push_back("--fps " + number(o.fps) + " overrides flight.json's fps " + number(info.fps));
+            in.notes.push_back({o.focal_px > 0 ? "focal_px" : "hfov_deg",
+                                (o.focal_px > 0 ? "and `focal_width` (hfov " + number(hfov) + " deg)" : number(hfov)) +
+                                    " overrides flight.json's camera.hfov_deg " + number(info.camera.hfov_deg)});
+        if (o.fps > 0 && o.fps != info.fps) in.notes.push_back({"fps", number(o.fps) + " overrides flight.json's fps " + number(info.fps)});
         in.map_path = !o.map.empty() ? o.map : info.map_file.empty() ? "" : o.dataset + "/" + info.map_file;
-        if (in.map_path.empty()) throw Error("--map: flight.json names no map; give --map FILE");
+        if (in.map_path.empty()) throw FieldError("map", "flight.json names no map; give `map` FILE");
     } else {
         // A real AIR folder: everything flight.json would say must come from the options.
-        const std::string why = ": required: " + info_path + " is absent (a real AIR folder)";
-        if (o.map.empty()) throw Error("--map" + why);
-        if (!(o.mpp > 0) && !geotiff) throw Error("--mpp" + why + " and the map is not a GeoTIFF");
-        if (!(hfov > 0)) throw Error("--hfov-deg (or --focal-px with --focal-width)" + why);
+        const std::string why = "required: " + info_path + " is absent (a real AIR folder)";
+        if (o.map.empty()) throw FieldError("map", why);
+        if (!(o.metres_per_pixel > 0) && !geotiff) throw FieldError("metres_per_pixel", why + " and the map is not a GeoTIFF");
+        if (!(hfov > 0)) throw FieldError("hfov_deg (or focal_px with focal_width)", why);
         in.scenario = "AIR folder " + o.dataset;
         in.camera = {640, 480, 60};  // placeholder size: each frame's own size is used
         in.map_path = o.map;
@@ -80,12 +82,12 @@ LocalizeInputs resolve_localize_inputs(const LocalizeInputOptions& o) {
 
     if (geotiff) {
         io::GeoTiff g = io::read_geotiff(in.map_path);
-        if (o.mpp > 0 && std::fabs(o.mpp - g.metres_per_pixel) > 1e-6 * g.metres_per_pixel)
-            throw Error("--mpp " + number(o.mpp) + " contradicts " + in.map_path + ", whose geotransform gives " + number(g.metres_per_pixel) +
-                        " m/px; leave --mpp out");
+        if (o.metres_per_pixel > 0 && std::fabs(o.metres_per_pixel - g.metres_per_pixel) > 1e-6 * g.metres_per_pixel)
+            throw FieldError("metres_per_pixel", number(o.metres_per_pixel) + " contradicts " + in.map_path + ", whose geotransform gives " +
+                                                     number(g.metres_per_pixel) + " m/px; leave `metres_per_pixel` out");
         if (in.has_flight_json && std::fabs(info.metres_per_pixel - g.metres_per_pixel) > 1e-6 * g.metres_per_pixel)
-            in.notes.push_back(in.map_path + "'s geotransform (" + number(g.metres_per_pixel) + " m/px) overrides flight.json's metres_per_pixel " +
-                               number(info.metres_per_pixel));
+            in.notes.push_back({"", in.map_path + "'s geotransform (" + number(g.metres_per_pixel) + " m/px) overrides flight.json's metres_per_pixel " +
+                                        number(info.metres_per_pixel)});
         auto geo = std::make_shared<io::GeoReference>(g, in.map_path);
         in.georeference = "GeoTIFF CRS " + g.crs_name + " (GDAL/PROJ)";
         in.to_latlon = [geo](double x, double y) {
@@ -96,7 +98,7 @@ LocalizeInputs resolve_localize_inputs(const LocalizeInputOptions& o) {
         in.map.metres_per_pixel = g.metres_per_pixel;
         in.map.image = std::move(g.image);
     } else {
-        in.map = sim::load_map(in.map_path, o.mpp > 0 ? o.mpp : info.metres_per_pixel, info.origin);
+        in.map = sim::load_map(in.map_path, o.metres_per_pixel > 0 ? o.metres_per_pixel : info.metres_per_pixel, info.origin);
         if (info.origin) {
             sim::Map frame;  // resolution and origin only: the lambdas outlive no image
             frame.metres_per_pixel = in.map.metres_per_pixel, frame.origin = info.origin;
@@ -110,4 +112,4 @@ LocalizeInputs resolve_localize_inputs(const LocalizeInputOptions& o) {
     return in;
 }
 
-}  // namespace trn::cli
+}  // namespace trn::localize

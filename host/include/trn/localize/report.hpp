@@ -3,19 +3,25 @@
 // map as the dissertation's Fig. 3.10, error over distance with trend lines as its Fig. 3.9).
 #include <map>
 #include <string>
+#include <utility>
+#include <vector>
 
-#include "trn/filter/localization.hpp"
+#include "trn/localize/localization.hpp"
 #include "trn/io/image_io.hpp"
 #include "trn/export.hpp"
 
 TRN_API_BEGIN
-namespace trn::filter {
+namespace trn::localize {
 
 // One line per filter step. The lock monitor's columns: lock_state (none = not assessed: monitor
 // off or no frame; else the strongest of lost > fix > inconsistent > weak > ok), lock_contrast,
 // lock_drift_m and lock_drift_bound_m (empty when unknown), lock_lost_events (running count) and
 // lock_widen_radius_m (the widened search's radius on a lost step, else 0).
 void write_rows_csv(const std::string& path, const std::vector<LocalizationRow>& rows);
+
+// The six error figures (mean, final, slope of the filter and of the odometry) under the names every
+// report uses: summary.json and the studies' results.
+std::vector<std::pair<std::string, double>> error_numbers(const LocalizationSummary& summary);
 
 // Summary keys plus free-form `extra` strings (backend, seed, conversion ...); numbers that are not
 // finite are written as null.
@@ -36,5 +42,5 @@ struct PlotFiles {
 PlotFiles plot_run(const std::string& folder, const std::vector<LocalizationRow>& rows, const LocalizationSummary& summary,
                    GrayView map, double metres_per_pixel, const std::string& title);
 
-}  // namespace trn::filter
+}  // namespace trn::localize
 TRN_API_END

@@ -1,4 +1,4 @@
-#include "trn/filter/report.hpp"
+#include "trn/localize/report.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -14,7 +14,7 @@
 #include "trn/io/gnuplot.hpp"
 #include "trn/io/provenance.hpp"
 
-namespace trn::filter {
+namespace trn::localize {
 namespace {
 // A CSV cell: unknown (no ground truth) is an empty cell, never "nan".
 struct Cell {
@@ -36,16 +36,6 @@ std::ostream& operator<<(std::ostream& os, LatLonCell c) {
 }
 bool has_errors(const LocalizationSummary& s) { return std::isfinite(s.filter_mean_error_m); }
 
-// The lock monitor's verdict in one word, the strongest first (a lost step is usually also weak
-// or inconsistent). assess() always measures the drift, so no drift = the step was not assessed.
-const char* lock_state(const LockReport& l) {
-    if (std::isnan(l.drift_m)) return "none";
-    if (l.lost) return "lost";
-    if (l.confident) return "fix";
-    if (l.inconsistent) return "inconsistent";
-    if (l.weak) return "weak";
-    return "ok";
-}
 }  // namespace
 
 void write_rows_csv(const std::string& path, const std::vector<LocalizationRow>& rows) {
@@ -62,11 +52,20 @@ void write_rows_csv(const std::string& path, const std::vector<LocalizationRow>&
             << r.odometry_y << ',' << r.estimate_x << ',' << r.estimate_y << ',' << r.estimate_yaw << ',' << r.best_x << ',' << r.best_y
             << ',' << Cell{r.error_m} << ',' << Cell{r.odometry_error_m} << ',' << r.particles << ',' << r.off_map << ',' << r.score_ms << ','
             << r.step_ms << ',' << r.odometry_lost << ',' << r.frame_missing << ',' << r.reinitialised << ',' << r.tilt_deg << ','
-            << r.too_oblique << ',' << LatLonCell{r.estimate_lat} << ',' << LatLonCell{r.estimate_lon} << ',' << lock_state(r.lock) << ','
+            << r.too_oblique << ',' << LatLonCell{r.estimate_lat} << ',' << LatLonCell{r.estimate_lon} << ',' << lock_state_name(r.lock) << ','
             << Cell{r.lock.contrast} << ',' << Cell{r.lock.drift_m} << ',' << Cell{r.lock.drift_bound_m} << ',' << lost_events << ','
             << (r.lock.lost ? r.lock.widen_radius_m : 0.0) << ',' << r.odometry_source << '\n';
     }
     file.commit();
+}
+
+std::vector<std::pair<std::string, double>> error_numbers(const LocalizationSummary& s) {
+    return {{"filter_mean_error_m", s.filter_mean_error_m},
+            {"odometry_mean_error_m", s.odometry_mean_error_m},
+            {"filter_final_error_m", s.filter_final_error_m},
+            {"odometry_final_error_m", s.odometry_final_error_m},
+            {"filter_error_slope_m_per_km", s.filter_error_slope_m_per_km},
+            {"odometry_error_slope_m_per_km", s.odometry_error_slope_m_per_km}};
 }
 
 void write_summary_json(const std::string& path, const LocalizationSummary& s, const std::map<std::string, std::string>& strings,
@@ -75,12 +74,7 @@ void write_summary_json(const std::string& path, const LocalizationSummary& s, c
     auto num = [](double v) { return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr); };
     j["ground_truth"] = has_errors(s);
     if (has_errors(s)) {
-        j["filter_mean_error_m"] = num(s.filter_mean_error_m);
-        j["odometry_mean_error_m"] = num(s.odometry_mean_error_m);
-        j["filter_final_error_m"] = num(s.filter_final_error_m);
-        j["odometry_final_error_m"] = num(s.odometry_final_error_m);
-        j["filter_error_slope_m_per_km"] = num(s.filter_error_slope_m_per_km);
-        j["odometry_error_slope_m_per_km"] = num(s.odometry_error_slope_m_per_km);
+        for (const auto& [key, value] : error_numbers(s)) j[key] = num(value);
     } else {
         j["errors"] = "no ground truth: the flight has no MapX/MapY, so no error is computed";
     }
@@ -199,4 +193,4 @@ PlotFiles plot_run(const std::string& folder, const std::vector<LocalizationRow>
     return {trajectory.path, error.path};
 }
 
-}  // namespace trn::filter
+}  // namespace trn::localize

@@ -1,0 +1,48 @@
+#include "field_flags.hpp"
+
+#include <array>
+#include <utility>
+
+namespace trn::cli {
+namespace {
+
+constexpr std::array<std::pair<const char*, const char*>, 15> kFlags{{
+    {"dataset", "--dataset"},
+    {"flight.folder", "--dataset"},
+    {"map", "--map"},
+    {"metres_per_pixel", "--mpp"},
+    {"hfov_deg", "--hfov-deg"},
+    {"focal_px", "--focal-px"},
+    {"focal_width", "--focal-width"},
+    {"hfov_deg (or focal_px with focal_width)", "--hfov-deg (or --focal-px with --focal-width)"},
+    {"fps", "--fps"},
+    {"rate_hz", "--rate"},
+    {"start_x, start_y", "--start"},
+    {"max_tilt_deg", "--max-tilt-deg"},
+    {"start_heading_rad", "--start-heading-deg"},
+    {"init_radius_m", "--init-radius-m"},
+    {"reinit_radius_m", "--reinit-radius-m"},
+}};
+
+}  // namespace
+
+std::string flag_of(const std::string& field) {
+    for (const auto& [f, flag] : kFlags)
+        if (field == f) return flag;
+    return field;
+}
+
+std::string flags_in(std::string text) {
+    for (std::size_t open = text.find('`'); open != std::string::npos; open = text.find('`', open + 1)) {
+        const std::size_t close = text.find('`', open + 1);
+        if (close == std::string::npos) break;
+        const std::string flag = flag_of(text.substr(open + 1, close - open - 1));
+        text.replace(open, close - open + 1, flag);
+        open += flag.size() - 1;
+    }
+    return text;
+}
+
+std::string with_flags(const FieldError& error) { return flag_of(error.field()) + ": " + flags_in(error.detail()); }
+
+}  // namespace trn::cli

@@ -1,0 +1,136 @@
+#pragma once
+// A whole flight localized at once, built on the online Localizer (localizer.hpp): one row per
+// filter step with the ground truth and odometry next to the estimate, and a summary of errors the
+// way the dissertation gives them (mean, final, and the slope of a least-squares line of error over
+// distance flown). The flight is an AIR folder or a simulated scenario, with its own odometry or
+// visual odometry computed from the frames.
+#include <cmath>
+#include <functional>
+#include <map>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "trn/filter/flight_source.hpp"
+#include "trn/filter/visual_odometry.hpp"
+#include "trn/localize/localizer.hpp"
+#include "trn/sim/map.hpp"
+#include "trn/export.hpp"
+
+TRN_API_BEGIN
+namespace trn::localize {
+
+struct LocalizationRow {
+    std::size_t frame = 0;
+    double time_s = 0, distance_m = 0;                 // distance flown along the ground truth
+    double truth_x = NAN, truth_y = NAN;               // map pixels
+    double odometry_x = NAN, odometry_y = NAN;         // odometry placed on the map at the start
+    double estimate_x = 0, estimate_y = 0, estimate_yaw = 0;
+    double best_x = 0, best_y = 0;
+    double error_m = NAN, odometry_error_m = NAN;
+    std::size_t particles = 0, off_map = 0;
+    double score_ms = 0, step_ms = 0;
+    bool odometry_lost = false, frame_missing = false, reinitialised = false;
+    filter::LockReport lock;  // the lock monitor's evidence and verdict this step (default: not assessed)
+    double tilt_deg = 0;                             // of the camera from nadir (measured roll/pitch)
+    bool too_oblique = false;                        // tilted beyond the limit: not scored (not frame_missing)
+    double estimate_lat = NAN, estimate_lon = NAN;   // degrees, when the map is georeferenced
+    std::string odometry_source;                     // the sample's: "simulated", "folder", "visual:features" ...
+};
+
+struct LocalizationSummary {
+    std::size_t steps = 0;
+    double filter_mean_error_m = NAN, odometry_mean_error_m = NAN;
+    double filter_final_error_m = NAN, odometry_final_error_m = NAN;
+    double filter_error_slope_m_per_km = NAN, odometry_error_slope_m_per_km = NAN;
+    double filter_error_intercept_m = NAN, odometry_error_intercept_m = NAN;  // of the same lines, at 0 km
+    double distance_m = 0;
+    double mean_particles = 0;
+    double frames_per_second = 0;   // filter steps per second of wall time (sampling + scoring + estimate)
+    double mean_score_ms = 0;
+    std::size_t frames_too_oblique = 0;  // not scored for tilt; counters.frames_missing excludes them
+    filter::FilterCounters counters;
+};
+
+// How a run was set up, for its report.
+struct RunInfo {
+    std::string backend, device;           // the scoring backend's name and device
+    std::string conversion, sampling;      // the filter's (Conversion::to_string, to_string(SamplingMethod))
+    double sparse = 1;                     // share of template pixels scored (1 = dense)
+    std::uint64_t seed = 1;
+    double filter_rate_hz = 0;
+    int template_width = 0;
+    std::size_t stride = 1, frames = 0;    // every stride-th camera frame is a step; frames expected (0: unknown)
+    double start_x = NAN, start_y = NAN;   // the start used (the first row's truth when the spec gave none)
+    bool visual_odometry = false;
+    filter::VisualOdometrySource::Counts visual_odometry_counts;
+};
+
+struct LocalizationResult {
+    std::vector<LocalizationRow> rows;
+    LocalizationSummary summary;
+    RunInfo run;
+};
+
+// Progress: (samples done, samples expected or 0).
+using ProgressFn = std::function<void(std::size_t, std::size_t)>;
+
+// A recorded flight: an AIR folder (metadata.csv and frames).
+struct AirFolderFlight {
+    std::string folder;
+    sim::Camera camera;     // only hfov_deg matters: each frame's own width gives its scale
+    double fps = 0;         // camera frame rate; 0: unknown, every row is a filter step at rate_hz
+    double max_tilt_deg = filter::kDefaultMaxTiltDeg;
+};
+
+// A flight simulated over `world` (the scene the camera sees, kept alive by the caller).
+struct SimulatedFlight {
+    const sim::Map* world = nullptr;
+    sim::FlightConfig flight;
+};
+
+enum class OdometryKind {
+    Recorded,  // the flight's own: an AIR folder's SvoX/SvoY, the simulator's drifting odometry
+    Visual,    // computed frame to frame from the camera (visual_odometry.hpp)
+};
+
+struct LocalizationSpec {
+    std::variant<AirFolderFlight, SimulatedFlight> flight;
+    OdometryKind odometry = OdometryKind::Recorded;
+    double rate_hz = 5;              // filter steps per second (every fps/rate-th frame)
+    LocalizerConfig localizer;       // start_x/start_y NaN: the first row's ground truth
+    // Latitude/longitude of a map pixel when the map is georeferenced (fills the rows' estimate_lat/lon).
+    std::function<sim::LatLon(double x, double y)> to_latlon;
+};
+
+// What a run reports while it goes: its set-up before the first step, the flight source's
+// warnings, and progress.
+struct RunHooks {
+    std::function<void(const RunInfo&)> started;
+    std::function<void(const std::string&)> warning;
+    ProgressFn progress;
+};
+
+// Localizes the whole flight of `spec` on `map` (metres_per_pixel: the map's) with `backend`.
+// Throws trn::Error naming the spec field (flight.folder, start_x ...) or the dataset's file:line.
+LocalizationResult run_localization(const LocalizationSpec& spec, GrayView map, double metres_per_pixel, Backend& backend,
+                                    const RunHooks& hooks = {});
+
+// The same over any flight source with a Localizer already built (tests, custom sources). Its start
+// is config.start_*, else the first sample's ground truth.
+LocalizationResult run_localization(filter::FlightSource& source, Localizer& localizer, const ProgressFn& progress = {});
+
+// Least-squares line of y over x (NaN with fewer than two distinct x).
+struct FittedLine {
+    double slope = NAN, intercept = NAN;
+};
+FittedLine fit_line(const std::vector<double>& x, const std::vector<double>& y);
+inline double fitted_slope(const std::vector<double>& x, const std::vector<double>& y) { return fit_line(x, y).slope; }
+// The lock monitor's counters: added to a command's extra summary-JSON numbers, and as one line
+// for the console.
+std::map<std::string, double> with_lock_numbers(const LocalizationSummary& summary, std::map<std::string, double> numbers);
+std::string format_lock_summary(const LocalizationSummary& summary);
+LocalizationSummary summarise(const std::vector<LocalizationRow>& rows, const filter::FilterCounters& counters, double wall_s);
+
+}  // namespace trn::localize
+TRN_API_END

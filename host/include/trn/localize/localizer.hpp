@@ -1,0 +1,93 @@
+#pragma once
+// The online localizer: what a robot embeds. Built once from the map, a scoring backend and the
+// filter's settings; fed one Observation per camera frame as frames come; answers each with an
+// Estimate. Every localization in trnkit (the CLI's localize and demo, the studies, the C API and
+// Python) steps this class, so the same inputs give the same estimates bit for bit everywhere.
+//
+// Conventions (trn/scoring.hpp): map pixels, x east, y south, pixel centres at integers; yaw and
+// headings in radians, clockwise from north (compass heading of the frame's top edge).
+#include <chrono>
+#include <cmath>
+#include <cstddef>
+#include <memory>
+
+#include "trn/backend.hpp"
+#include "trn/filter/nadir_warp.hpp"
+#include "trn/filter/particle_filter.hpp"
+#include "trn/filter/scorer.hpp"
+#include "trn/export.hpp"
+
+TRN_API_BEGIN
+namespace trn::localize {
+
+struct LocalizerConfig {
+    filter::FilterConfig filter;             // metres_per_pixel is replaced by the map's
+    filter::BackendScorerOptions scoring;    // template width, dense or sparse scoring
+    double start_x = NAN, start_y = NAN;     // map pixels: the last known position (required before the first step)
+    double start_heading_rad = NAN;          // centre of the initial headings; NaN: the first step's heading
+    double camera_hfov_deg = NAN;            // horizontal field of view, needed when steps give altitude, not scale
+    double max_tilt_deg = filter::kDefaultMaxTiltDeg;  // steps with an attitude tilted further are not scored
+
+    void validate() const;  // throws trn::Error naming the field ("start_x", "camera_hfov_deg", ...)
+};
+
+// One camera frame and what the other sensors said since the previous one.
+struct Observation {
+    GrayView frame;                                       // grey, as taken; empty: no image this step
+    double map_px_per_camera_px = NAN;                    // the frame's scale; NaN: from altitude_agl_m and the camera
+    double altitude_agl_m = NAN;                          // height above the ground, metres
+    double odometry_east_m = NAN, odometry_north_m = NAN; // displacement since the previous step (NaN: lost)
+    double heading_rad = NAN;                             // compass heading; NaN: none this step
+    bool has_attitude = false;                            // roll/pitch measured: a tilted frame is warped to nadir
+    double roll_rad = 0, pitch_rad = 0;
+};
+
+struct Estimate {
+    double x = 0, y = 0, yaw = 0;                   // weighted mean, map pixels / radians
+    double best_x = 0, best_y = 0, best_yaw = 0, best_ncc = 0;  // the best-scoring particle
+    double spread_m = 0;                            // weighted rms distance of the particles from (x, y)
+    std::size_t particles = 0, off_map = 0;         // scored this step / of them with no valid score
+    bool frame_missing = false;                     // no frame scored (none given, or too oblique)
+    bool too_oblique = false;                       // the attitude tilted the camera beyond max_tilt_deg
+    double tilt_deg = 0;                            // of the optical axis from the vertical (0 without attitude)
+    bool odometry_lost = false, reinitialised = false;
+    filter::LockReport lock;                        // the lock monitor's evidence and verdict
+    double score_ms = 0, step_ms = 0;               // scoring calls / the whole step, wall time
+};
+
+// The lock monitor's verdict in one word, the strongest first: "none" (not assessed: monitor off or
+// no frame), "lost", "fix", "inconsistent", "weak", "ok".
+const char* lock_state_name(const filter::LockReport& lock);
+
+class Localizer {
+public:
+    // The map is uploaded to `backend` here (the view need not outlive the constructor); the
+    // backend must outlive the Localizer.
+    Localizer(GrayView map, double metres_per_pixel, Backend& backend, const LocalizerConfig& config);
+    ~Localizer();
+    Localizer(const Localizer&) = delete;
+    Localizer& operator=(const Localizer&) = delete;
+
+    // Scatters the particles around (x, y) map pixels, headings around heading_rad (NaN: kept
+    // unknown until a step brings one). Optional: the first step starts at config.start_* itself.
+    void start(double x, double y, double heading_rad);
+    Estimate step(const Observation& observation);
+
+    bool started() const { return started_; }
+    const filter::FilterCounters& counters() const;
+    const std::vector<filter::Particle>& particles() const;
+    const LocalizerConfig& config() const { return config_; }
+    double metres_per_pixel() const { return mpp_; }
+    const DeviceInfo& backend_info() const { return backend_.info(); }
+
+private:
+    LocalizerConfig config_;
+    double mpp_;
+    Backend& backend_;
+    std::unique_ptr<filter::BackendScorer> scorer_;
+    std::unique_ptr<filter::ParticleFilter> filter_;
+    bool started_ = false;
+};
+
+}  // namespace trn::localize
+TRN_API_END

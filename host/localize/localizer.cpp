@@ -1,0 +1,121 @@
+#include "trn/localize/localizer.hpp"
+
+#include <cstdio>
+
+#include "trn/error.hpp"
+#include "trn/sim/air_format.hpp"
+#include "trn/sim/camera.hpp"
+
+namespace trn::localize {
+namespace {
+
+// Below this the frame is taken as level and left as it is (as the AIR flight source does: a
+// quaternion written for roll = pitch = 0 reads back as ~1e-14 deg).
+constexpr double kLevelDeg = 1e-6;
+constexpr double kDegPerRad = 180 / 3.14159265358979323846;
+
+std::string number(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.6g", v);
+    return buf;
+}
+
+}  // namespace
+
+// A lost step is usually also weak or inconsistent. assess() always measures the drift, so no drift
+// means the step was not assessed.
+const char* lock_state_name(const filter::LockReport& l) {
+    if (std::isnan(l.drift_m)) return "none";
+    if (l.lost) return "lost";
+    if (l.confident) return "fix";
+    if (l.inconsistent) return "inconsistent";
+    if (l.weak) return "weak";
+    return "ok";
+}
+
+void LocalizerConfig::validate() const {
+    if (std::isnan(start_x) != std::isnan(start_y)) throw Error("localizer config: start_x and start_y go together");
+    if (!std::isnan(start_x) && !(std::isfinite(start_x) && std::isfinite(start_y)))
+        throw Error("localizer config: start_x, start_y must be finite map pixels");
+    if (!std::isnan(start_heading_rad) && !std::isfinite(start_heading_rad))
+        throw Error("localizer config: start_heading_rad must be finite (or NaN: the first step's heading)");
+    if (!std::isnan(camera_hfov_deg) && !(camera_hfov_deg > 0 && camera_hfov_deg < 180))
+        throw Error("localizer config: camera_hfov_deg must be in (0, 180) degrees, got " + number(camera_hfov_deg));
+    if (!(max_tilt_deg >= 0 && max_tilt_deg < 90)) throw Error("localizer config: max_tilt_deg must be in [0, 90)");
+    if (scoring.template_width < 0) throw Error("localizer config: scoring.template_width must be >= 0 (0: full width)");
+}
+
+Localizer::Localizer(GrayView map, double metres_per_pixel, Backend& backend, const LocalizerConfig& config)
+    : config_(config), mpp_(metres_per_pixel), backend_(backend) {
+    if (!(metres_per_pixel > 0) || !std::isfinite(metres_per_pixel))
+        throw Error("localizer: metres_per_pixel must be > 0, got " + number(metres_per_pixel));
+    if (map.width < 2 || map.height < 2) throw Error("localizer: the map must be at least 2x2 pixels");
+    config_.validate();
+    config_.filter.metres_per_pixel = metres_per_pixel;
+    config_.filter.validate();
+    scorer_ = std::make_unique<filter::BackendScorer>(backend, map, config_.scoring);
+    filter_ = std::make_unique<filter::ParticleFilter>(*scorer_, config_.filter);
+}
+
+Localizer::~Localizer() = default;
+
+const filter::FilterCounters& Localizer::counters() const { return filter_->counters(); }
+const std::vector<filter::Particle>& Localizer::particles() const { return filter_->particles(); }
+
+void Localizer::start(double x, double y, double heading_rad) {
+    if (!std::isfinite(x) || !std::isfinite(y)) throw Error("localizer: start position must be finite map pixels");
+    filter_->initialise(x, y, heading_rad);
+    started_ = true;
+}
+
+Estimate Localizer::step(const Observation& o) {
+    const auto t0 = std::chrono::steady_clock::now();
+    if (!started_) {
+        if (std::isnan(config_.start_x))
+            throw Error("localizer: start_x, start_y: required (the last known position, map pixels) before the first step");
+        start(config_.start_x, config_.start_y, std::isnan(config_.start_heading_rad) ? o.heading_rad : config_.start_heading_rad);
+    }
+    Estimate e;
+    filter::FilterInput in;
+    in.odometry_east_m = o.odometry_east_m, in.odometry_north_m = o.odometry_north_m;
+    in.heading_rad = o.heading_rad;
+    in.frame = o.frame.empty() ? GrayView{} : o.frame;
+    in.map_px_per_camera_px = o.map_px_per_camera_px;
+    GrayImage level;  // the nadir view of a tilted frame
+    if (!o.frame.empty()) {
+        if (!std::isfinite(o.map_px_per_camera_px)) {
+            if (std::isnan(config_.camera_hfov_deg))
+                throw Error("localizer: a step without map_px_per_camera_px needs camera_hfov_deg in the config (and altitude_agl_m)");
+            // The scale of this frame's own pixels: the focal length in pixels grows with the width.
+            const sim::Camera own{o.frame.width, o.frame.height, config_.camera_hfov_deg};
+            in.map_px_per_camera_px = sim::template_scale(own, o.altitude_agl_m, mpp_);
+        }
+        if (o.has_attitude) {
+            e.tilt_deg = sim::tilt_from_nadir(o.roll_rad, o.pitch_rad) * kDegPerRad;
+            e.too_oblique = e.tilt_deg > config_.max_tilt_deg;
+            if (!e.too_oblique && e.tilt_deg > kLevelDeg) {
+                if (std::isnan(config_.camera_hfov_deg)) throw Error("localizer: a step with an attitude needs camera_hfov_deg in the config");
+                try {
+                    level = filter::warp_to_nadir(o.frame, config_.camera_hfov_deg, o.roll_rad, o.pitch_rad).image;
+                    in.frame = level.view();
+                } catch (const Error&) {  // no level view left: too oblique after all
+                    e.too_oblique = true;
+                }
+            }
+            if (e.too_oblique) in.frame = {};
+        }
+    }
+    const filter::StepReport rep = filter_->step(in);
+    e.x = rep.estimate.x, e.y = rep.estimate.y, e.yaw = rep.estimate.yaw;
+    e.best_x = rep.estimate.best_x, e.best_y = rep.estimate.best_y, e.best_yaw = rep.estimate.best_yaw, e.best_ncc = rep.estimate.best_ncc;
+    e.spread_m = rep.estimate.spread_px * mpp_;
+    e.particles = rep.particles, e.off_map = rep.off_map;
+    e.frame_missing = rep.frame_missing;
+    e.odometry_lost = rep.odometry_lost, e.reinitialised = rep.reinitialised;
+    e.lock = rep.lock;
+    e.score_ms = rep.score_ms;
+    e.step_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    return e;
+}
+
+}  // namespace trn::localize

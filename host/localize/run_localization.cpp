@@ -1,0 +1,161 @@
+#include <algorithm>
+#include <cmath>
+
+#include "trn/error.hpp"
+#include "trn/field_error.hpp"
+#include "trn/localize/air_frames.hpp"
+#include "trn/localize/localization.hpp"
+#include "trn/sim/air_format.hpp"
+
+namespace trn::localize {
+namespace {
+
+RunInfo describe(const Localizer& localizer) {
+    const LocalizerConfig& c = localizer.config();
+    RunInfo info;
+    info.backend = localizer.backend_info().name, info.device = localizer.backend_info().device;
+    info.conversion = c.filter.conversion.to_string(), info.sampling = filter::to_string(c.filter.sampling);
+    info.sparse = c.scoring.sampling.fraction;
+    info.seed = c.filter.seed;
+    info.template_width = c.scoring.template_width;
+    return info;
+}
+
+std::size_t stride_for(double fps, double rate_hz) {
+    return std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(fps / rate_hz)));
+}
+
+}  // namespace
+
+LocalizationResult run_localization(filter::FlightSource& source, Localizer& localizer, const ProgressFn& progress) {
+    if (localizer.started()) throw Error("run_localization: the Localizer has already been started; give it a fresh one");
+    LocalizationResult result;
+    result.run = describe(localizer);
+    const LocalizerConfig& cfg = localizer.config();
+    const double mpp = localizer.metres_per_pixel();
+    filter::FlightSample s;
+    OdometryIncrements odometry;
+    double start_x = cfg.start_x, start_y = cfg.start_y;
+    double prev_tx = 0, prev_ty = 0, distance_m = 0;
+    const std::size_t hint = source.frames_hint();
+    double wall_s = 0;
+    while (source.next(s)) {
+        if (!localizer.started()) {  // the start: the given one, else the first sample's truth ("the last known position")
+            if (std::isnan(start_x)) {
+                if (!s.has_truth)
+                    throw FieldError("start_x, start_y", "required: the flight has no ground truth (MapX/MapY) in its first frame");
+                start_x = s.truth_x, start_y = s.truth_y;
+            }
+            localizer.start(start_x, start_y, std::isnan(cfg.start_heading_rad) ? s.heading_rad : cfg.start_heading_rad);
+            prev_tx = s.truth_x, prev_ty = s.truth_y;
+            result.run.start_x = start_x, result.run.start_y = start_y;
+        }
+        // The sources give odometry from the start; the Localizer takes it step by step.
+        Observation o;
+        const OdometryIncrements::Step step = odometry.next(s.odometry_east_m, s.odometry_north_m);
+        o.odometry_east_m = step.east_m, o.odometry_north_m = step.north_m;
+        o.heading_rad = s.heading_rad;
+        if (!s.image.pixels.empty()) o.frame = s.image.view();
+        o.map_px_per_camera_px = s.map_px_per_camera_px;  // the source has levelled the frame already
+        const Estimate e = localizer.step(o);
+        wall_s += e.step_ms / 1000;
+
+        LocalizationRow row;
+        row.frame = s.frame_index;
+        row.time_s = s.time_s;
+        if (s.has_truth) {
+            distance_m += std::hypot(s.truth_x - prev_tx, s.truth_y - prev_ty) * mpp;
+            prev_tx = s.truth_x, prev_ty = s.truth_y;
+            row.truth_x = s.truth_x, row.truth_y = s.truth_y;
+        }
+        row.distance_m = distance_m;
+        row.odometry_x = start_x + (odometry.last_east_m() - odometry.origin_east_m()) / mpp;
+        row.odometry_y = start_y - (odometry.last_north_m() - odometry.origin_north_m()) / mpp;
+        row.estimate_x = e.x, row.estimate_y = e.y, row.estimate_yaw = e.yaw;
+        row.best_x = e.best_x, row.best_y = e.best_y;
+        if (s.has_truth) {
+            row.error_m = std::hypot(row.estimate_x - s.truth_x, row.estimate_y - s.truth_y) * mpp;
+            row.odometry_error_m = std::hypot(row.odometry_x - s.truth_x, row.odometry_y - s.truth_y) * mpp;
+        }
+        row.particles = e.particles, row.off_map = e.off_map;
+        row.score_ms = e.score_ms, row.step_ms = e.step_ms;
+        row.odometry_lost = e.odometry_lost, row.frame_missing = e.frame_missing && !s.too_oblique, row.reinitialised = e.reinitialised;
+        row.tilt_deg = s.tilt_deg, row.too_oblique = s.too_oblique;
+        row.odometry_source = s.odometry_source;
+        row.lock = e.lock;
+        result.rows.push_back(row);
+        if (progress) progress(result.rows.size(), hint);
+    }
+    result.summary = summarise(result.rows, localizer.counters(), wall_s);
+    return result;
+}
+
+LocalizationResult run_localization(const LocalizationSpec& spec, GrayView map, double metres_per_pixel, Backend& backend,
+                                    const RunHooks& hooks) {
+    if (!(spec.rate_hz > 0) || !std::isfinite(spec.rate_hz)) throw FieldError("rate_hz", "must be > 0");
+    LocalizerConfig cfg = spec.localizer;
+    LocalizationResult result;
+    auto finish = [&](filter::FlightSource& recorded, filter::VisualOdometrySource& visual, RunInfo info) {
+        if (hooks.started) hooks.started(info);
+        Localizer localizer(map, metres_per_pixel, backend, cfg);
+        const bool use_visual = spec.odometry == OdometryKind::Visual;
+        result = run_localization(use_visual ? static_cast<filter::FlightSource&>(visual) : recorded, localizer, hooks.progress);
+        const RunInfo filled = result.run;
+        result.run = info;
+        result.run.backend = filled.backend, result.run.device = filled.device, result.run.conversion = filled.conversion;
+        result.run.sampling = filled.sampling, result.run.sparse = filled.sparse, result.run.seed = filled.seed;
+        result.run.template_width = filled.template_width, result.run.start_x = filled.start_x, result.run.start_y = filled.start_y;
+        result.run.visual_odometry = use_visual;
+        if (use_visual) result.run.visual_odometry_counts = visual.counts();
+    };
+    RunInfo info;
+    if (const auto* air = std::get_if<AirFolderFlight>(&spec.flight)) {
+        const std::string& folder = air->folder;
+        if (folder.empty()) throw FieldError("flight.folder", "required (an AIR flight folder)");
+        // Without a frame rate every row is a filter step at rate_hz.
+        const double fps = air->fps > 0 ? air->fps : spec.rate_hz;
+        info.stride = stride_for(fps, spec.rate_hz);
+        info.frames = filter::count_air_rows(folder);
+        info.filter_rate_hz = fps / info.stride;
+        filter::AirFlightSource source(folder, air->camera, metres_per_pixel, fps, info.stride, (info.frames + info.stride - 1) / info.stride,
+                                       {map.width, map.height}, air->max_tilt_deg);
+        if (std::isnan(cfg.start_x)) {  // the start defaults to the first row's truth: refuse before the run when it has none
+            sim::AirReader first(folder);
+            sim::AirRecord r;
+            if (first.next(r) && !std::isfinite(r.map_x))
+                throw FieldError("start_x, start_y", "required: " + folder + "/metadata.csv has no ground truth (empty MapX,MapY) in its first row; give `start_x, start_y`");
+        }
+        if (hooks.warning)
+            for (const std::string& w : source.warnings()) hooks.warning(w);
+        cfg.camera_hfov_deg = air->camera.hfov_deg, cfg.max_tilt_deg = air->max_tilt_deg;
+        filter::VisualOdometrySource visual(source, metres_per_pixel);
+        try {
+            finish(source, visual, info);
+        } catch (const FieldError&) {
+            throw;
+        } catch (const Error& e) {
+            if (std::string(e.what()).rfind(folder, 0) == 0) throw;  // the flight source's own errors name their place
+            throw Error(source.position() + ": " + e.what());          // which row of the flight the library choked on
+        }
+        source.check_unchanged();  // frames of a dataset replaced mid-run are not this flight's: no result
+    } else {
+        const SimulatedFlight& sim_flight = std::get<SimulatedFlight>(spec.flight);
+        if (!sim_flight.world) throw FieldError("flight.world", "required (the scene the simulated camera sees)");
+        const double fps = sim_flight.flight.scenario.fps;
+        info.stride = stride_for(fps, spec.rate_hz);
+        info.filter_rate_hz = fps / info.stride;
+        filter::SimulatedFlightSource simulated(*sim_flight.world, sim_flight.flight, info.stride);
+        info.frames = simulated.frames_hint() * info.stride;
+        cfg.camera_hfov_deg = sim_flight.flight.camera.hfov_deg;
+        filter::VisualOdometrySource visual(simulated, sim_flight.world->metres_per_pixel);
+        finish(simulated, visual, info);
+    }
+    if (spec.to_latlon)  // the estimates also as latitude / longitude
+        for (LocalizationRow& r : result.rows) {
+            const sim::LatLon ll = spec.to_latlon(r.estimate_x, r.estimate_y);
+            r.estimate_lat = ll.latitude_deg, r.estimate_lon = ll.longitude_deg;
+        }
+    return result;
+}
+
+}  // namespace trn::localize

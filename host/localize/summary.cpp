@@ -1,0 +1,69 @@
+#include "trn/localize/localization.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+#include "trn/error.hpp"
+
+namespace trn::localize {
+
+FittedLine fit_line(const std::vector<double>& x, const std::vector<double>& y) {
+    const std::size_t n = x.size();
+    if (n < 2 || y.size() != n) return {};
+    double mx = 0, my = 0;
+    for (std::size_t i = 0; i < n; ++i) mx += x[i], my += y[i];
+    mx /= n, my /= n;
+    double sxy = 0, sxx = 0;
+    for (std::size_t i = 0; i < n; ++i) sxy += (x[i] - mx) * (y[i] - my), sxx += (x[i] - mx) * (x[i] - mx);
+    if (!(sxx > 0)) return {};
+    const double slope = sxy / sxx;
+    return {slope, my - slope * mx};
+}
+
+std::map<std::string, double> with_lock_numbers(const LocalizationSummary& s, std::map<std::string, double> numbers) {
+    numbers["lock_lost_events"] = static_cast<double>(s.counters.lock_lost_events);
+    numbers["weak_contrast_steps"] = static_cast<double>(s.counters.weak_contrast_steps);
+    numbers["odometry_inconsistent_steps"] = static_cast<double>(s.counters.odometry_inconsistent_steps);
+    return numbers;
+}
+
+std::string format_lock_summary(const LocalizationSummary& s) {
+    char buf[256];
+    std::snprintf(buf, sizeof buf, "lock monitor: %zu lost (search widened), %zu weak-contrast steps, %zu odometry-inconsistent steps\n",
+                  s.counters.lock_lost_events, s.counters.weak_contrast_steps, s.counters.odometry_inconsistent_steps);
+    return buf;
+}
+
+LocalizationSummary summarise(const std::vector<LocalizationRow>& rows, const filter::FilterCounters& counters, double wall_s) {
+    LocalizationSummary s;
+    s.steps = rows.size();
+    s.counters = counters;
+    if (rows.empty()) return s;
+    // The filter sees a too-oblique frame as an empty one; missing means failed to load.
+    for (const LocalizationRow& r : rows) s.counters.frames_missing -= r.too_oblique && s.counters.frames_missing > 0;
+    std::vector<double> km, fe, oe;
+    double particles = 0, score = 0;
+    for (const LocalizationRow& r : rows) {
+        particles += r.particles, score += r.score_ms;
+        s.frames_too_oblique += r.too_oblique;
+        if (std::isfinite(r.error_m) && std::isfinite(r.odometry_error_m)) {
+            km.push_back(r.distance_m / 1000), fe.push_back(r.error_m), oe.push_back(r.odometry_error_m);
+        }
+    }
+    s.mean_particles = particles / rows.size();
+    s.mean_score_ms = score / rows.size();
+    s.distance_m = rows.back().distance_m;
+    s.frames_per_second = wall_s > 0 ? rows.size() / wall_s : 0;
+    if (!fe.empty()) {
+        double sf = 0, so = 0;
+        for (std::size_t i = 0; i < fe.size(); ++i) sf += fe[i], so += oe[i];
+        s.filter_mean_error_m = sf / fe.size(), s.odometry_mean_error_m = so / oe.size();
+        s.filter_final_error_m = fe.back(), s.odometry_final_error_m = oe.back();
+        const FittedLine f = fit_line(km, fe), o = fit_line(km, oe);
+        s.filter_error_slope_m_per_km = f.slope, s.filter_error_intercept_m = f.intercept;
+        s.odometry_error_slope_m_per_km = o.slope, s.odometry_error_intercept_m = o.intercept;
+    }
+    return s;
+}
+
+}  // namespace trn::localize

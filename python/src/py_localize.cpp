@@ -1,0 +1,325 @@
+// Localization from Python: trnkit.Localizer (the online DPC-PFL localizer, trn::localize), the
+// rows of a recorded AIR folder as a robot would feed them (trnkit.read_air_folder), and a whole
+// flight at once (trnkit.localize). Filter work runs with the GIL released.
+#include "py_localize.hpp"
+
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <utility>
+
+#include "py_arrays.hpp"
+#include "trn/field_error.hpp"
+#include "trn/io/image_io.hpp"
+#include "trn/localize/air_frames.hpp"
+#include "trn/localize/air_inputs.hpp"
+#include "trn/localize/localization.hpp"
+#include "trn/localize/localizer.hpp"
+#include "trn/localize/report_folder.hpp"
+#include "trn/registry.hpp"
+
+namespace trn::py {
+namespace {
+
+// A library field named as this module's keyword (start_x, start_y are one keyword here).
+std::string keyword_of(const std::string& field) {
+    if (field == "start_x, start_y") return "start";
+    if (field == "flight.folder") return "dataset";
+    if (field == "hfov_deg (or focal_px with focal_width)") return "hfov_deg";
+    return field;
+}
+
+// FieldError as a ValueError naming the keyword.
+template <typename Body>
+auto naming_keywords(Body&& body) {
+    try {
+        return body();
+    } catch (const FieldError& e) {
+        std::string detail = e.detail();
+        for (std::size_t at = detail.find('`'); at != std::string::npos; at = detail.find('`', at)) detail.erase(at, 1);
+        throw pyb::value_error(keyword_of(e.field()) + ": " + detail);
+    }
+}
+
+struct PyLocalizer {
+    std::unique_ptr<Backend> backend;  // declared first: released after the localizer
+    std::unique_ptr<localize::Localizer> impl;
+    std::mutex mutex;
+};
+
+localize::LocalizerConfig make_config(std::optional<std::pair<double, double>> start, std::optional<double> start_heading_rad,
+                                      std::optional<double> camera_hfov_deg, double max_tilt_deg, int template_width, double sparse,
+                                      std::uint64_t seed, const std::string& conversion, const std::string& sampling,
+                                      std::size_t min_particles, std::size_t max_particles, std::size_t particles, double init_radius_m,
+                                      double reinit_radius_m) {
+    localize::LocalizerConfig c;
+    if (start) c.start_x = start->first, c.start_y = start->second;
+    if (start_heading_rad) c.start_heading_rad = *start_heading_rad;
+    if (camera_hfov_deg) c.camera_hfov_deg = *camera_hfov_deg;
+    c.max_tilt_deg = max_tilt_deg;
+    if (template_width < 0) throw pyb::value_error("template_width: must be >= 0 (0: the frame's full width)");
+    c.scoring.template_width = template_width;
+    if (!(sparse > 0 && sparse <= 1)) throw pyb::value_error("sparse: the share of template pixels scored must be in (0, 1]");
+    if (sparse < 1) c.scoring.sampling = Sampling::random(sparse, seed);
+    c.filter.seed = seed;
+    try {
+        c.filter.conversion = filter::Conversion::parse(conversion);
+    } catch (const Error& e) {
+        throw pyb::value_error(std::string("conversion: ") + e.what());
+    }
+    try {
+        c.filter.sampling = filter::parse_sampling_method(sampling);
+    } catch (const Error& e) {
+        throw pyb::value_error(std::string("sampling: ") + e.what());
+    }
+    c.filter.min_particles = min_particles, c.filter.max_particles = max_particles, c.filter.fixed_particles = particles;
+    c.filter.init_radius_m = init_radius_m, c.filter.reinit_radius_m = reinit_radius_m;
+    return c;
+}
+
+pyb::dict estimate_dict(const localize::Estimate& e) {
+    pyb::dict d;
+    d["x"] = e.x, d["y"] = e.y, d["yaw"] = e.yaw;
+    d["best_x"] = e.best_x, d["best_y"] = e.best_y, d["best_yaw"] = e.best_yaw, d["best_ncc"] = e.best_ncc;
+    d["spread_m"] = e.spread_m;
+    d["particles"] = e.particles, d["off_map"] = e.off_map;
+    d["frame_missing"] = e.frame_missing, d["too_oblique"] = e.too_oblique, d["tilt_deg"] = e.tilt_deg;
+    d["odometry_lost"] = e.odometry_lost, d["reinitialised"] = e.reinitialised;
+    d["lock_state"] = localize::lock_state_name(e.lock);
+    d["lock_contrast"] = e.lock.contrast, d["lock_drift_m"] = e.lock.drift_m;
+    d["score_ms"] = e.score_ms, d["step_ms"] = e.step_ms;
+    return d;
+}
+
+pyb::dict step(PyLocalizer& l, const pyb::object& frame, std::optional<std::pair<double, double>> odometry,
+               std::optional<double> heading_rad, std::optional<double> altitude_agl_m, std::optional<double> scale,
+               std::optional<std::pair<double, double>> attitude) {
+    if (!l.impl) throw pyb::value_error("Localizer: closed");
+    localize::Observation o;
+    BorrowedGray image;
+    if (!frame.is_none()) {
+        image = gray_view(frame, "frame");
+        o.frame = image.view;
+    }
+    if (odometry) o.odometry_east_m = odometry->first, o.odometry_north_m = odometry->second;
+    if (heading_rad) o.heading_rad = *heading_rad;
+    if (altitude_agl_m) o.altitude_agl_m = *altitude_agl_m;
+    if (scale) o.map_px_per_camera_px = *scale;
+    if (attitude) o.has_attitude = true, o.roll_rad = attitude->first, o.pitch_rad = attitude->second;
+    if (!o.frame.empty() && !scale && !altitude_agl_m)
+        throw pyb::value_error("step: give altitude_agl_m (metres above the ground) or scale (map pixels per frame pixel) with a frame");
+    localize::Estimate e;
+    {
+        pyb::gil_scoped_release release;
+        std::lock_guard<std::mutex> lock(l.mutex);
+        e = l.impl->step(o);
+    }
+    return estimate_dict(e);
+}
+
+// Optional value or None.
+pyb::object maybe(double v) { return std::isfinite(v) ? pyb::object(pyb::float_(v)) : pyb::object(pyb::none()); }
+
+pyb::dict air_row(const localize::AirFrame& f) {
+    pyb::dict d;
+    d["row"] = f.row;
+    d["filename"] = f.filename;
+    d["image_error"] = f.image_error;
+    pyb::dict step;  // Localizer.step's keyword arguments
+    if (f.image.pixels.empty()) {
+        step["frame"] = pyb::none();
+    } else {
+        pyb::array_t<std::uint8_t> a({f.image.height, f.image.width});
+        for (int y = 0; y < f.image.height; ++y)
+            std::copy_n(f.image.view().row(y), f.image.width, a.mutable_data(y, 0));
+        step["frame"] = a;
+    }
+    step["altitude_agl_m"] = f.altitude_agl_m;
+    step["heading_rad"] = maybe(f.heading_rad);
+    step["attitude"] = pyb::make_tuple(f.roll_rad, f.pitch_rad);
+    step["odometry"] = std::isfinite(f.odometry_step.east_m) ? pyb::object(pyb::make_tuple(f.odometry_step.east_m, f.odometry_step.north_m))
+                                                             : pyb::object(pyb::none());
+    d["step"] = step;
+    d["truth"] = std::isfinite(f.truth_x) ? pyb::object(pyb::make_tuple(f.truth_x, f.truth_y)) : pyb::object(pyb::none());
+    return d;
+}
+
+pyb::list read_air_folder(const std::string& folder) {
+    return naming_keywords([&] {
+        localize::AirFrameReader reader(folder);
+        localize::AirFrame f;
+        pyb::list rows;
+        while (reader.next(f)) rows.append(air_row(f));
+        return rows;
+    });
+}
+
+// The rows as NumPy columns.
+pyb::dict columns(const std::vector<localize::LocalizationRow>& rows) {
+    const auto n = static_cast<pyb::ssize_t>(rows.size());
+    auto column = [&](auto get) {
+        pyb::array_t<double> a(n);
+        for (pyb::ssize_t i = 0; i < n; ++i) a.mutable_at(i) = get(rows[i]);
+        return a;
+    };
+    using Row = localize::LocalizationRow;
+    pyb::dict d;
+    d["frame"] = column([](const Row& r) { return static_cast<double>(r.frame); });
+    d["time_s"] = column([](const Row& r) { return r.time_s; });
+    d["distance_m"] = column([](const Row& r) { return r.distance_m; });
+    d["truth_x"] = column([](const Row& r) { return r.truth_x; });
+    d["truth_y"] = column([](const Row& r) { return r.truth_y; });
+    d["odometry_x"] = column([](const Row& r) { return r.odometry_x; });
+    d["odometry_y"] = column([](const Row& r) { return r.odometry_y; });
+    d["estimate_x"] = column([](const Row& r) { return r.estimate_x; });
+    d["estimate_y"] = column([](const Row& r) { return r.estimate_y; });
+    d["estimate_yaw"] = column([](const Row& r) { return r.estimate_yaw; });
+    d["error_m"] = column([](const Row& r) { return r.error_m; });
+    d["odometry_error_m"] = column([](const Row& r) { return r.odometry_error_m; });
+    d["particles"] = column([](const Row& r) { return static_cast<double>(r.particles); });
+    d["score_ms"] = column([](const Row& r) { return r.score_ms; });
+    d["estimate_lat"] = column([](const Row& r) { return r.estimate_lat; });
+    d["estimate_lon"] = column([](const Row& r) { return r.estimate_lon; });
+    return d;
+}
+
+pyb::dict summary_dict(const localize::LocalizationSummary& s) {
+    pyb::dict d;
+    d["steps"] = s.steps;
+    d["filter_mean_error_m"] = maybe(s.filter_mean_error_m), d["odometry_mean_error_m"] = maybe(s.odometry_mean_error_m);
+    d["filter_final_error_m"] = maybe(s.filter_final_error_m), d["odometry_final_error_m"] = maybe(s.odometry_final_error_m);
+    d["filter_error_slope_m_per_km"] = maybe(s.filter_error_slope_m_per_km);
+    d["odometry_error_slope_m_per_km"] = maybe(s.odometry_error_slope_m_per_km);
+    d["distance_m"] = s.distance_m, d["mean_particles"] = s.mean_particles;
+    d["frames_per_second"] = s.frames_per_second, d["mean_score_ms"] = s.mean_score_ms;
+    d["frames_too_oblique"] = s.frames_too_oblique;
+    d["odometry_lost"] = s.counters.odometry_lost, d["frames_missing"] = s.counters.frames_missing;
+    d["reinitialisations"] = s.counters.reinitialisations, d["lock_lost_events"] = s.counters.lock_lost_events;
+    return d;
+}
+
+pyb::dict localize_flight(const std::string& dataset, const std::string& map, const std::string& backend, double metres_per_pixel,
+                          double hfov_deg, double fps, double rate_hz, std::optional<std::pair<double, double>> start,
+                          std::optional<double> start_heading_rad, const std::string& odometry, double max_tilt_deg, int template_width,
+                          double sparse, std::uint64_t seed, const std::string& conversion, const std::string& sampling,
+                          std::size_t min_particles, std::size_t max_particles, std::size_t particles, double init_radius_m,
+                          double reinit_radius_m, const std::string& out, bool plots) {
+    if (odometry != "recorded" && odometry != "visual") throw pyb::value_error("odometry: 'recorded' (the folder's SvoX/SvoY) or 'visual', got '" + odometry + "'");
+    return naming_keywords([&] {
+        localize::AirInputOptions io;
+        io.dataset = dataset, io.map = map, io.metres_per_pixel = metres_per_pixel, io.hfov_deg = hfov_deg, io.fps = fps;
+        const localize::AirInputs in = localize::resolve_air_inputs(io);
+        localize::LocalizationSpec spec;
+        spec.flight = localize::AirFolderFlight{dataset, in.camera, in.fps, max_tilt_deg};
+        spec.odometry = odometry == "visual" ? localize::OdometryKind::Visual : localize::OdometryKind::Recorded;
+        spec.rate_hz = rate_hz;
+        spec.to_latlon = in.to_latlon;
+        spec.localizer = make_config(start, start_heading_rad, std::nullopt, max_tilt_deg, template_width, sparse, seed, conversion, sampling,
+                                     min_particles, max_particles, particles, init_radius_m, reinit_radius_m);
+        const std::unique_ptr<Backend> b = default_registry().create(backend);
+        localize::LocalizationResult r;
+        {
+            pyb::gil_scoped_release release;
+            r = localize::run_localization(spec, in.map.image.view(), in.map.metres_per_pixel, *b);
+            if (!out.empty()) {
+                localize::ReportOptions report;
+                report.owner = "localize", report.folder_name = "out", report.plots = plots, report.plot_title = in.scenario;
+                report.odometry = odometry == "visual" ? "visual" : "folder";
+                report.strings = {{"dataset", dataset}, {"map", in.map_path}};
+                std::ostringstream ignored;
+                localize::write_localization_report(r, out, in.map.image.view(), in.map.metres_per_pixel, report, ignored);
+            }
+        }
+        pyb::dict d;
+        d["rows"] = columns(r.rows);
+        d["summary"] = summary_dict(r.summary);
+        d["backend"] = r.run.backend;
+        d["metres_per_pixel"] = in.map.metres_per_pixel;
+        d["start"] = pyb::make_tuple(r.run.start_x, r.run.start_y);
+        return d;
+    });
+}
+
+}  // namespace
+
+void register_localize(pyb::module_& m) {
+    using namespace pyb::literals;
+    pyb::class_<PyLocalizer, std::shared_ptr<PyLocalizer>>(m, "Localizer", R"(The online DPC-PFL localizer (trn::localize::Localizer).
+
+Built once from the map (a 2-D uint8 array, grey), its resolution and a backend; stepped once per
+camera frame. Conventions: map pixels (x east, y south, pixel centres at integers); yaw and
+headings in RADIANS, clockwise from north; odometry in metres east/north since the previous step.
+Same inputs, same seed: the same estimates as `trnkit localize`, bit for bit.)")
+        .def(pyb::init([](const pyb::object& map, double metres_per_pixel, const std::string& backend, std::pair<double, double> start,
+                          std::optional<double> start_heading_rad, std::optional<double> camera_hfov_deg, double max_tilt_deg,
+                          int template_width, double sparse, std::uint64_t seed, const std::string& conversion, const std::string& sampling,
+                          std::size_t min_particles, std::size_t max_particles, std::size_t particles, double init_radius_m,
+                          double reinit_radius_m) {
+                 auto l = std::make_shared<PyLocalizer>();
+                 const localize::LocalizerConfig c =
+                     make_config(start, start_heading_rad, camera_hfov_deg, max_tilt_deg, template_width, sparse, seed, conversion, sampling,
+                                 min_particles, max_particles, particles, init_radius_m, reinit_radius_m);
+                 const BorrowedGray view = gray_view(map, "map");
+                 l->backend = default_registry().create(backend);
+                 naming_keywords([&] {
+                     l->impl = std::make_unique<localize::Localizer>(view.view, metres_per_pixel, *l->backend, c);
+                     return 0;
+                 });
+                 return l;
+             }),
+             "map"_a, "metres_per_pixel"_a, "backend"_a = "cpu", pyb::kw_only(), "start"_a, "start_heading_rad"_a = pyb::none(),
+             "camera_hfov_deg"_a = pyb::none(), "max_tilt_deg"_a = 10.0, "template_width"_a = 160, "sparse"_a = 1.0, "seed"_a = 1,
+             "conversion"_a = "logistic:0.2", "sampling"_a = "kld", "min_particles"_a = 100, "max_particles"_a = 2000, "particles"_a = 1000,
+             "init_radius_m"_a = 300.0, "reinit_radius_m"_a = 300.0,
+             R"(map: 2-D uint8 array; metres_per_pixel: its resolution; backend: "cpu-ref", "cpu", "opencl[:N]", "vulkan[:N]".
+start: (x, y) map pixels, the last known position. start_heading_rad: centre of the initial headings
+(None: the first step's heading). camera_hfov_deg: horizontal field of view, needed when steps give
+altitude_agl_m or attitude. The rest are the filter's settings (trn/filter/particle_filter.hpp).)")
+        .def("step", &step, "frame"_a = pyb::none(), pyb::kw_only(), "odometry"_a = pyb::none(), "heading_rad"_a = pyb::none(),
+             "altitude_agl_m"_a = pyb::none(), "scale"_a = pyb::none(), "attitude"_a = pyb::none(),
+             R"(One camera frame (2-D uint8, grey, as taken; None: no frame this step) and the sensors since the last step:
+odometry (east_m, north_m) displacement or None (lost); heading_rad compass heading or None;
+altitude_agl_m metres above the ground, or scale (map pixels per frame pixel); attitude (roll_rad,
+pitch_rad) or None (a tilted frame is warped to nadir, beyond max_tilt_deg not scored).
+Returns a dict: x, y, yaw (radians), best_*, spread_m, particles, off_map, frame_missing,
+too_oblique, tilt_deg, odometry_lost, reinitialised, lock_state, lock_contrast, lock_drift_m,
+score_ms, step_ms.)")
+        .def("close", [](PyLocalizer& l) { l.impl.reset(), l.backend.reset(); }, "Releases the map and the backend now.")
+        .def("__enter__", [](std::shared_ptr<PyLocalizer> l) { return l; })
+        .def("__exit__", [](PyLocalizer& l, const pyb::args&) { l.impl.reset(), l.backend.reset(); });
+
+    m.def(
+        "load_gray",
+        [](const std::string& path) {
+            const GrayImage image = load_gray(path);
+            pyb::array_t<std::uint8_t> a({image.height, image.width});
+            for (int y = 0; y < image.height; ++y) std::copy_n(image.view().row(y), image.width, a.mutable_data(y, 0));
+            return a;
+        },
+        "path"_a, "An image file (PNG, JPEG, TIFF ...) as a 2-D uint8 array, grey.");
+
+    m.def("read_air_folder", &read_air_folder, "folder"_a,
+          R"(The rows of an AIR flight folder (metadata.csv + frames) as a robot's sensors would feed a Localizer:
+a list of dicts with row, filename, image_error, truth ((x, y) map pixels or None) and step: the
+keyword arguments of Localizer.step (frame as taken, odometry since the previous row, heading_rad,
+altitude_agl_m, attitude).)");
+
+    m.def("localize", &localize_flight, pyb::kw_only(), "dataset"_a, "map"_a = "", "backend"_a = "cpu", "metres_per_pixel"_a = 0.0,
+          "hfov_deg"_a = 0.0, "fps"_a = 0.0, "rate_hz"_a = 5.0, "start"_a = pyb::none(), "start_heading_rad"_a = pyb::none(),
+          "odometry"_a = "recorded", "max_tilt_deg"_a = 10.0, "template_width"_a = 160, "sparse"_a = 1.0, "seed"_a = 1,
+          "conversion"_a = "logistic:0.2", "sampling"_a = "kld", "min_particles"_a = 100, "max_particles"_a = 2000, "particles"_a = 1000,
+          "init_radius_m"_a = 50.0, "reinit_radius_m"_a = 300.0, "out"_a = "", "plots"_a = false,
+          R"(Localizes a whole AIR folder, as `trnkit localize` does (same defaults: a 50 m start prior).
+map: the map image (default: the one flight.json names); metres_per_pixel, hfov_deg, fps: when
+flight.json does not say (0: not given); start: (x, y) map pixels (None: the first row's truth);
+odometry: 'recorded' or 'visual'; out: a folder for localization.csv and summary.json ('' none).
+Returns {'rows': dict of NumPy columns, 'summary': dict, 'backend', 'metres_per_pixel', 'start'}.)");
+}
+
+}  // namespace trn::py

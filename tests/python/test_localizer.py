@@ -1,0 +1,88 @@
+"""trnkit.Localizer on the real flight (issue 24): fed row by row from trnkit.read_air_folder it gives
+trnkit.localize's estimates bit for bit, and both equal `trnkit localize` to the CSV's 10 digits;
+docs/EMBEDDING.md's localize_flight.py runs as written; errors name the keyword. The AIR folder is
+made from ../shared/data/realflight by `trnkit register --air-out` (skipped visibly without it)."""
+import csv
+import os
+import subprocess
+
+import numpy as np
+import pytest
+
+import trnkit
+from conftest import backend_or_skip
+from test_doc_example import doc_example
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+POSES = os.path.join(HERE, "..", "data", "realflight_poses.csv")
+
+
+def shared_data():
+    d = os.environ.get("TRN_SHARED_DATA", "")
+    if not d or not os.path.exists(os.path.join(d, "realflight", "frame_00000.png")):
+        pytest.skip("TRN_SHARED_DATA/realflight not found: real flight unavailable")
+    return d
+
+
+@pytest.fixture(scope="module")
+def flight(tmp_path_factory):
+    data = shared_data()
+    air = str(tmp_path_factory.mktemp("realflight") / "air")
+    ortho = os.path.join(data, "orthophoto.png")
+    frames = sorted(os.path.join(data, "realflight", f) for f in os.listdir(os.path.join(data, "realflight")) if f.startswith("frame_000"))
+    subprocess.run([os.environ["TRNKIT_EXE"], "register", "--map", ortho, "--verify", POSES, "--air-out", air, *frames],
+                   check=True, capture_output=True)
+    return air, ortho
+
+
+def cli_estimates(air, ortho, backend, out):
+    subprocess.run([os.environ["TRNKIT_EXE"], "localize", "--dataset", air, "--map", ortho, "--rate", "0.5", "--no-plots",
+                    "--backend", backend, "--init-radius-m", "50", "--seed", "1", "--out", out], check=True, capture_output=True)
+    with open(os.path.join(out, "localization.csv")) as f:
+        return list(csv.DictReader(f))
+
+
+@pytest.mark.parametrize("family", ["cpu-ref", "cpu", "opencl", "vulkan"])
+def test_localizer_row_by_row_equals_localize_and_the_cli(flight, family, tmp_path):
+    backend_or_skip(family)
+    air, ortho = flight
+    whole = trnkit.localize(dataset=air, map=ortho, backend=family, rate_hz=0.5)
+    rows = trnkit.read_air_folder(air)
+    assert len(rows) == 16 and whole["summary"]["steps"] == 16
+    mpp = whole["metres_per_pixel"]
+    with trnkit.Localizer(trnkit.load_gray(ortho), mpp, family, start=rows[0]["truth"], camera_hfov_deg=60,
+                          init_radius_m=50) as loc:
+        online = [loc.step(**row["step"]) for row in rows]
+    for key in ("x", "y", "yaw"):
+        np.testing.assert_array_equal(np.array([e[key] for e in online]), whole["rows"]["estimate_" + key])
+    cli = cli_estimates(air, ortho, family, str(tmp_path / "cli"))
+    for key in ("x", "y", "yaw"):
+        assert [r["estimate_" + key] for r in cli] == ["%.10g" % v for v in whole["rows"]["estimate_" + key]]
+    assert whole["summary"]["filter_mean_error_m"] < whole["summary"]["odometry_mean_error_m"]
+
+
+def test_the_doc_example_localizes_the_real_flight(flight, capsys):
+    air, map_path = flight
+    ns = {"air": air, "map_path": map_path}
+    exec(compile(doc_example("localize_flight.py"), "EMBEDDING.md:localize_flight.py", "exec"), ns)
+    assert len(ns["estimates"]) == 16
+    assert "16 steps" in capsys.readouterr().out
+
+
+def test_errors_name_the_keyword(tmp_path):
+    with pytest.raises(ValueError, match=r"^dataset: .*not a folder"):
+        trnkit.localize(dataset=str(tmp_path / "absent"))
+    ortho = np.zeros((64, 64), np.uint8)
+    with pytest.raises(TypeError):
+        trnkit.Localizer(ortho, 0.5, "cpu")  # start is required
+    with pytest.raises(ValueError, match="sparse"):
+        trnkit.Localizer(ortho, 0.5, "cpu", start=(32, 32), sparse=2)
+    with pytest.raises(ValueError, match="conversion"):
+        trnkit.Localizer(ortho, 0.5, "cpu", start=(32, 32), conversion="cubic")
+    with trnkit.Localizer(ortho, 0.5, "cpu", start=(32, 32)) as loc:
+        with pytest.raises(ValueError, match="altitude_agl_m"):
+            loc.step(np.zeros((20, 20), np.uint8))  # a frame needs its scale
+        e = loc.step(None, odometry=(1.0, 0.0))  # no frame: propagated, not scored
+        assert e["frame_missing"]
+    with pytest.raises(ValueError, match="closed"):
+        loc.step(None)
