@@ -7,10 +7,10 @@
 
 #include "backend_env.hpp"
 #include "commands.hpp"
-#include "frame_registration.hpp"
-#include "real_air_folder.hpp"
 #include "options.hpp"
 #include "trn/error.hpp"
+#include "trn/filter/frame_registration.hpp"
+#include "trn/filter/real_air_folder.hpp"
 #include "trn/io/atomic_file.hpp"
 #include "trn/io/output_folder.hpp"
 #include "trn/io/image_io.hpp"

@@ -8,8 +8,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include "frame_registration.hpp"
-#include "real_air_folder.hpp"
+#include "trn/filter/frame_registration.hpp"
+#include "trn/filter/real_air_folder.hpp"
 #include "trn/sim/air_format.hpp"
 #include "trn/sim/camera.hpp"
 #include "trn/error.hpp"

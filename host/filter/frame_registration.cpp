@@ -1,4 +1,4 @@
-#include "frame_registration.hpp"
+#include "trn/filter/frame_registration.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "real_air_folder.hpp"
+#include "trn/filter/real_air_folder.hpp"
 
 #include <cmath>
 
