@@ -17,7 +17,6 @@
 #include "options.hpp"
 #include "progress.hpp"
 #include "trn/error.hpp"
-#include "trn/filter/backend_choice.hpp"
 #include "trn/filter/flight_source.hpp"
 #include "trn/filter/localization.hpp"
 #include "trn/filter/nadir_warp.hpp"
@@ -110,7 +109,7 @@ void localize(const LocalizeArgs& a) {
 
     std::unique_ptr<Backend> backend;
     if (a.backend == "fastest") {
-        backend = filter::create_fastest_backend(backend_options_from_environment());
+        backend = default_registry().create_fastest(backend_options_from_environment());
     } else {
         backend = default_registry().create(a.backend, backend_options_from_environment());
     }
