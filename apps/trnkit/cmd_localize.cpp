@@ -25,6 +25,7 @@
 #include "trn/registry.hpp"
 #include "trn/sim/air_format.hpp"
 #include "trn/sim/map.hpp"
+#include "trn/detail/angles.hpp"
 
 namespace trn::cli {
 namespace {
@@ -154,7 +155,7 @@ void localize(const LocalizeArgs& a) {
               << a.seed << "\n";
     filter::LocalizationResult result;
     try {
-        result = filter::run_localization(use_visual ? static_cast<filter::FlightSource&>(visual) : source, pf, progress_bar, start_x, start_y, a.start_heading_deg * 3.14159265358979323846 / 180);
+        result = filter::run_localization(use_visual ? static_cast<filter::FlightSource&>(visual) : source, pf, progress_bar, start_x, start_y, a.start_heading_deg * kPi / 180);
     } catch (const Error& e) {
         if (std::string(e.what()).rfind(dataset, 0) == 0) throw;  // the flight source's own errors name their place
         throw Error(source.position() + ": " + e.what());           // which row of the flight the library choked on

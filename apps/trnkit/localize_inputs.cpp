@@ -8,11 +8,12 @@
 #include "trn/error.hpp"
 #include "trn/io/geotiff.hpp"
 #include "trn/sim/air_format.hpp"
+#include "trn/detail/angles.hpp"
 
 namespace trn::cli {
 namespace {
 
-constexpr double kDeg = 180.0 / 3.14159265358979323846;
+constexpr double kDeg = 180.0 / kPi;
 
 std::string number(double v) {
     char buf[40];

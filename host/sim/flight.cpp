@@ -5,11 +5,10 @@
 
 #include "random.hpp"
 #include "trn/error.hpp"
+#include "trn/detail/angles.hpp"
 
 namespace trn::sim {
 namespace {
-
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
 
 // Half the diagonal of the camera footprint on the ground, metres (level camera).
 double footprint_radius_m(const Camera& c, double altitude_m) {
