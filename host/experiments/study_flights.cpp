@@ -25,6 +25,7 @@
 #include "trn/filter/visual_odometry.hpp"
 #include "table_3_13.hpp"
 #include "world.hpp"
+#include "trn/detail/json_number.hpp"
 
 namespace trn::experiments {
 namespace {
@@ -82,7 +83,7 @@ Json fly(const Json& c, const std::string& preset_name, const std::string& conve
     std::filesystem::create_directories(ctx.job_folder);
     filter::write_rows_csv(ctx.job_folder + "/localization.csv", r.rows);
     if (plots) filter::plot_run(ctx.job_folder, r.rows, s, map->image.view(), map->metres_per_pixel, preset_name + " " + conversion);
-    auto num = [](double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); };
+    const auto num = json_number<Json>;
     Json result = {{"filter_mean_error_m", num(s.filter_mean_error_m)},
             {"odometry_mean_error_m", num(s.odometry_mean_error_m)},
             {"filter_final_error_m", num(s.filter_final_error_m)},

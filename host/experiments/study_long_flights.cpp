@@ -20,6 +20,7 @@
 #include "trn/filter/report.hpp"
 #include "trn/filter/scorer.hpp"
 #include "world.hpp"
+#include "trn/detail/json_number.hpp"
 
 namespace trn::experiments {
 namespace {
@@ -77,7 +78,7 @@ Json fly(const Json& c, const std::string& preset_name, double distance_m, int t
     std::filesystem::create_directories(ctx.job_folder);
     filter::write_rows_csv(ctx.job_folder + "/localization.csv", r.rows);
     if (ctx.plots) filter::plot_run(ctx.job_folder, r.rows, s, map->image.view(), map->metres_per_pixel, preset_name);
-    auto num = [](double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); };
+    const auto num = json_number<Json>;
     return {{"filter_mean_error_m", num(s.filter_mean_error_m)},
             {"odometry_mean_error_m", num(s.odometry_mean_error_m)},
             {"filter_final_error_m", num(s.filter_final_error_m)},

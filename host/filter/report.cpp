@@ -13,6 +13,7 @@
 #include "trn/io/atomic_file.hpp"
 #include "trn/io/gnuplot.hpp"
 #include "trn/io/provenance.hpp"
+#include "trn/detail/json_number.hpp"
 
 namespace trn::filter {
 namespace {
@@ -72,7 +73,7 @@ void write_rows_csv(const std::string& path, const std::vector<LocalizationRow>&
 void write_summary_json(const std::string& path, const LocalizationSummary& s, const std::map<std::string, std::string>& strings,
                         const std::map<std::string, double>& numbers) {
     nlohmann::ordered_json j;
-    auto num = [](double v) { return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr); };
+    const auto num = json_number<nlohmann::ordered_json>;
     j["ground_truth"] = has_errors(s);
     if (has_errors(s)) {
         j["filter_mean_error_m"] = num(s.filter_mean_error_m);
