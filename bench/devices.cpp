@@ -4,7 +4,7 @@
 #include <map>
 #include <memory>
 
-#include "backend_env.hpp"
+#include "backend_env.hpp"  // the TRN_* variables -> BackendOptions, as the CLI reads them
 #include "trn/registry.hpp"
 
 namespace trn::bench {
@@ -12,7 +12,7 @@ namespace trn::bench {
 const std::vector<DeviceEntry>& bench_devices() {
     static const std::vector<DeviceEntry> devices = [] {
         std::vector<DeviceEntry> out;
-        for (const FamilyStatus& s : default_registry().status(cli::backend_options_from_environment()))
+        for (const FamilyStatus& s : default_registry().status(test::backend_options_from_environment()))
             for (const DeviceInfo& d : s.devices) out.push_back({d.name, d.family, d.type, d.device});
         return out;
     }();
@@ -22,7 +22,7 @@ const std::vector<DeviceEntry>& bench_devices() {
 Backend& backend_for(const std::string& name) {
     static std::map<std::string, std::unique_ptr<Backend>> backends;
     auto& slot = backends[name];
-    if (!slot) slot = default_registry().create(name, cli::backend_options_from_environment());
+    if (!slot) slot = default_registry().create(name, test::backend_options_from_environment());
     return *slot;
 }
 

@@ -10,7 +10,7 @@
 #include <filesystem>
 #include <set>
 
-#include "backend_env.hpp"
+#include "backend_env.hpp"  // the TRN_* variables -> BackendOptions, as the CLI reads them
 #include "devices.hpp"
 #include "register.hpp"
 #include "timing.hpp"
@@ -33,7 +33,7 @@ StartTimes start_backend(const std::string& name) {
 
     StartTimes t;
     const auto t0 = Clock::now();
-    auto backend = default_registry().create(name, cli::backend_options_from_environment());
+    auto backend = default_registry().create(name, test::backend_options_from_environment());
     t.create_s = seconds_since(t0);
     const auto t1 = Clock::now();
     const MapHandle h = backend->upload_map({map.data(), 256, 256, 256});

@@ -3,8 +3,8 @@
 #include <cstdlib>
 #include <string>
 
+#include "trn/backend_option_text.hpp"
 #include "trn/error.hpp"
-#include "trn/parse_number.hpp"
 
 namespace trn::cli {
 namespace {
@@ -15,12 +15,15 @@ const char* value_of(const char* name) {
     return v && *v ? v : nullptr;
 }
 
-// A whole number in [1, max] (0 would silently mean "the default" in BackendOptions).
-std::uint32_t whole_number(const char* name, const char* text, std::uint64_t max) {
-    const auto v = parse_whole_number(text);
-    if (!v || *v < 1 || *v > max)
-        throw Error(std::string(name) + "='" + text + "': expected a whole number from 1 to " + std::to_string(max));
-    return static_cast<std::uint32_t>(*v);
+// Sets `option` from the variable when it is set; a refused value names the variable.
+void take(BackendOptions& o, const char* variable, const char* option) {
+    const char* v = value_of(variable);
+    if (!v) return;
+    try {
+        set_backend_option(o, option, v);
+    } catch (const BackendOptionError& e) {
+        throw Error(std::string(variable) + "='" + v + "': " + e.problem());
+    }
 }
 
 // The per-user cache root: $XDG_CACHE_HOME, else $HOME/.cache; "" when neither is set.
@@ -34,24 +37,22 @@ std::string cache_root() {
 
 BackendOptions backend_options_from_environment() {
     BackendOptions o;
-    if (const char* d = value_of("TRN_OPENCL_DEVICE")) o.default_device["opencl"] = d;
-    if (const char* d = value_of("TRN_VULKAN_DEVICE")) o.default_device["vulkan"] = d;
-
-    if (const char* v = value_of("TRN_CPU_THREADS")) o.cpu.threads = static_cast<int>(whole_number("TRN_CPU_THREADS", v, 4096));
-    if (const char* v = value_of("TRN_CPU_SIMD")) o.cpu.simd = std::string(v) != "off";
-
-    if (const char* v = value_of("TRN_OPENCL_WORK_GROUP")) o.opencl.work_group = whole_number("TRN_OPENCL_WORK_GROUP", v, 65536);
-    const std::string root = cache_root();
-    const char* cl_cache = value_of("TRN_OPENCL_CACHE");
-    if (!root.empty() && !(cl_cache && std::string(cl_cache) == "0")) o.opencl.program_cache_dir = root + "/trnkit/opencl";
-
-    if (const char* v = value_of("TRN_VULKAN_WORKGROUP")) o.vulkan.work_group = whole_number("TRN_VULKAN_WORKGROUP", v, 1024);
-    if (const char* v = value_of("TRN_VULKAN_PARTICLES_PER_GROUP"))
-        o.vulkan.particles_per_group = whole_number("TRN_VULKAN_PARTICLES_PER_GROUP", v, 16);
+    take(o, "TRN_OPENCL_DEVICE", "default_device.opencl");
+    take(o, "TRN_VULKAN_DEVICE", "default_device.vulkan");
+    take(o, "TRN_CPU_THREADS", "cpu.threads");
+    take(o, "TRN_CPU_SIMD", "cpu.simd");
+    take(o, "TRN_OPENCL_WORK_GROUP", "opencl.work_group");
+    take(o, "TRN_VULKAN_WORKGROUP", "vulkan.work_group");
+    take(o, "TRN_VULKAN_PARTICLES_PER_GROUP", "vulkan.particles_per_group");
+    // Switches of the test paths: only their one value changes anything.
     if (const char* v = value_of("TRN_VULKAN_MAP_LAYOUT")) o.vulkan.quad_maps = std::string(v) != "bytes";
     if (const char* v = value_of("TRN_VULKAN_NO_SUBGROUPS")) o.vulkan.subgroups = std::string(v) != "1";
     if (const char* v = value_of("TRN_VULKAN_FORCE_STAGING")) o.vulkan.force_staging = std::string(v) == "1";
     if (const char* v = value_of("TRN_VULKAN_VALIDATION")) o.vulkan.validation = std::string(v) == "1";
+
+    const std::string root = cache_root();
+    const char* cl_cache = value_of("TRN_OPENCL_CACHE");
+    if (!root.empty() && !(cl_cache && std::string(cl_cache) == "0")) o.opencl.program_cache_dir = root + "/trnkit/opencl";
     // Set but empty: no pipeline cache on disk.
     if (const char* dir = std::getenv("TRN_VULKAN_PIPELINE_CACHE_DIR")) o.vulkan.pipeline_cache_dir = dir;
     else if (!root.empty()) o.vulkan.pipeline_cache_dir = root + "/trnkit";

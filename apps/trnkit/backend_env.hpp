@@ -1,6 +1,7 @@
 #pragma once
-// The one place that turns the TRN_* environment variables into trn::BackendOptions (the library
-// itself never reads the environment). Used by the trnkit CLI and by test and benchmark mains.
+// The trnkit CLI's TRN_* environment variables -> trn::BackendOptions (the library itself never
+// reads the environment; it parses the values, trn/backend_option_text.hpp). The test and benchmark
+// mains read the same variables through tests/common/backend_env.hpp.
 //   TRN_OPENCL_DEVICE, TRN_VULKAN_DEVICE     device when only the family is named (index or name text)
 //   TRN_CPU_THREADS=N                        worker threads of the cpu backend (default: hardware threads)
 //   TRN_CPU_SIMD=off                         portable inner loop instead of AVX2
@@ -19,7 +20,8 @@
 
 namespace trn::cli {
 
-// Reads the variables above; a malformed value throws trn::Error naming the variable and value.
+// Reads the variables above; a malformed value throws trn::Error naming the variable and value
+// (the library's BackendOptionError names its option; this names the variable instead).
 BackendOptions backend_options_from_environment();
 
 }  // namespace trn::cli

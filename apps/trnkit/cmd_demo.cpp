@@ -18,7 +18,6 @@
 #include "options.hpp"
 #include "progress.hpp"
 #include "trn/error.hpp"
-#include "trn/filter/backend_choice.hpp"
 #include "trn/localize/localization.hpp"
 #include "trn/localize/report_folder.hpp"
 #include "trn/io/output_folder.hpp"
@@ -82,10 +81,10 @@ void demo(const DemoArgs& a) {
     const sim::Map world = sim::generate_procedural_map(mo);
     const double maps_s = seconds_since(t0);
 
-    std::vector<filter::BackendTiming> timings;
+    std::vector<BackendTiming> timings;
     std::unique_ptr<Backend> backend;
     if (a.backend == "fastest") {
-        backend = filter::create_fastest_backend(backend_options_from_environment(), &timings);
+        backend = default_registry().create_fastest(backend_options_from_environment(), &timings);
     } else {
         backend = default_registry().create(a.backend, backend_options_from_environment());
     }

@@ -16,7 +16,6 @@
 #include "options.hpp"
 #include "progress.hpp"
 #include "trn/error.hpp"
-#include "trn/filter/backend_choice.hpp"
 #include "trn/registry.hpp"
 #include "trn/filter/nadir_warp.hpp"
 #include "trn/io/output_folder.hpp"
@@ -24,6 +23,7 @@
 #include "trn/localize/localization.hpp"
 #include "trn/localize/report_folder.hpp"
 #include "trn/sim/map.hpp"
+#include "trn/detail/angles.hpp"
 #include "trn/field_error.hpp"
 
 namespace trn::cli {
@@ -109,7 +109,7 @@ void localize_run(const LocalizeArgs& a) {
 
     std::unique_ptr<Backend> backend;
     if (a.backend == "fastest") {
-        backend = filter::create_fastest_backend(backend_options_from_environment());
+        backend = default_registry().create_fastest(backend_options_from_environment());
     } else {
         backend = default_registry().create(a.backend, backend_options_from_environment());
     }
@@ -134,7 +134,7 @@ void localize_run(const LocalizeArgs& a) {
     cfg.init_heading_sd_deg = a.heading_sd_deg;
     apply_filter_model_options(a.model, cfg);
     lc.start_x = start_x, lc.start_y = start_y;
-    lc.start_heading_rad = a.start_heading_deg * 3.14159265358979323846 / 180;
+    lc.start_heading_rad = a.start_heading_deg * kDeg;
 
     localize::RunHooks hooks;
     hooks.warning = [](const std::string& w) { std::cerr << "trnkit: warning: " << w << "\n"; };

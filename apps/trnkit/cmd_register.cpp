@@ -3,18 +3,18 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
-#include <numbers>
 
 #include "backend_env.hpp"
 #include "commands.hpp"
-#include "frame_registration.hpp"
-#include "real_air_folder.hpp"
 #include "options.hpp"
 #include "trn/error.hpp"
+#include "trn/filter/frame_registration.hpp"
+#include "trn/filter/real_air_folder.hpp"
 #include "trn/io/atomic_file.hpp"
 #include "trn/io/output_folder.hpp"
 #include "trn/io/image_io.hpp"
 #include "trn/registry.hpp"
+#include "trn/detail/angles.hpp"
 
 namespace trn::cli {
 namespace {
@@ -98,7 +98,7 @@ void add_register_command(CLI::App& app) {
             const bool ok = u.best_dist <= kBestTolerancePx;
             if (!ok) ++failures;
             std::fprintf(stderr, "%s  x %7.1f y %7.1f yaw %6.1f deg scale %.3f  off chain %5.1f %5.1f  ncc %.3f  runner-up %.3f at %5.1f px%s\n", name.c_str(), p.x,
-                         p.y, p.yaw * 180 / std::numbers::pi, p.scale, f.chain_dx, f.chain_dy, u.ncc_at_pose, u.runner_up_ncc, u.runner_up_dist,
+                         p.y, p.yaw * 180 / kPi, p.scale, f.chain_dx, f.chain_dy, u.ncc_at_pose, u.runner_up_ncc, u.runner_up_dist,
                          "");
             if (!ok) std::fprintf(stderr, "    NOT THE BEST: NCC %.3f at x %.1f y %.1f\n", u.best_ncc, u.best.x, u.best.y);
             csv += row_text(name, f, u);
@@ -120,19 +120,19 @@ void add_register_command(CLI::App& app) {
             if (!a->anchor.empty()) {
                 if (!(a->anchor[3] > 0)) throw Error("--anchor: SCALE must be positive");
                 o.anchor_hint = Pose{static_cast<float>(a->anchor[0]), static_cast<float>(a->anchor[1]),
-                                     static_cast<float>(a->anchor[2] * std::numbers::pi / 180), static_cast<float>(a->anchor[3])};
+                                     static_cast<float>(a->anchor[2] * kPi / 180), static_cast<float>(a->anchor[3])};
             }
             const reg::Registration r = reg::register_frames(*backend, map, frames, names, o);
             for (std::size_t k = 0; k + 1 < frames.size(); ++k)
                 std::fprintf(stderr, "motion %s -> %s: rotation %6.2f deg, fitted scale %.4f (not used), shift %6.1f %6.1f px, %d inliers\n",
-                             names[k].c_str(), names[k + 1].c_str(), r.motions[k].next_to_this.angle() * 180 / std::numbers::pi,
+                             names[k].c_str(), names[k + 1].c_str(), r.motions[k].next_to_this.angle() * 180 / kPi,
                              r.motions[k].fitted_scale, r.motions[k].next_to_this.tx, r.motions[k].next_to_this.ty,
                              r.motions[k].inliers);
             for (std::size_t k = 0; k < frames.size(); ++k)
                 std::fprintf(stderr, "chain %s: rotation %6.2f deg, scale %.4f, shift %7.1f %7.1f frame-0 px\n", names[k].c_str(),
-                             r.chain[k].angle() * 180 / std::numbers::pi, r.chain[k].scale(), r.chain[k].tx, r.chain[k].ty);
+                             r.chain[k].angle() * 180 / kPi, r.chain[k].scale(), r.chain[k].tx, r.chain[k].ty);
             std::fprintf(stderr, "anchor x %.1f y %.1f yaw %.2f deg scale %.4f, mean NCC of the chained poses %.3f\n", r.anchor.x, r.anchor.y,
-                         r.anchor.yaw * 180 / std::numbers::pi, r.anchor.scale, r.joint_ncc);
+                         r.anchor.yaw * 180 / kPi, r.anchor.scale, r.joint_ncc);
             for (std::size_t k = 0; k < frames.size(); ++k)
                 check(names[k], frames[k], r.frames[k]);
         }

@@ -3,9 +3,13 @@
 
 #include <algorithm>
 #include <cctype>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
 #include <string>
 
 #include "trn/parse_number.hpp"
+#include "trn/scoring_plan.hpp"
 
 namespace trn {
 namespace {
@@ -115,17 +119,47 @@ std::vector<std::string> BackendRegistry::preferred_order(const std::vector<Devi
     return names;
 }
 
-std::unique_ptr<Backend> BackendRegistry::create_fastest(BackendOptions options) const {
+namespace {
+
+// One realistic batch on `b` after a warm-up (kernel builds, buffers): a textured 512x512 map, a
+// 160x120 template cut from it, 1000 particles. Timing only, the scores do not matter.
+double time_one_batch(Backend& b) {
+    const int mw = 512, mh = 512, tw = 160, th = 120;
+    std::vector<std::uint8_t> map(std::size_t(mw) * mh), templ(std::size_t(tw) * th);
+    for (int y = 0; y < mh; ++y)
+        for (int x = 0; x < mw; ++x)
+            map[std::size_t(y) * mw + x] = static_cast<std::uint8_t>(128 + 60 * std::sin(x * 0.05) * std::cos(y * 0.07) + (x * 7 + y * 13) % 17);
+    for (int y = 0; y < th; ++y)
+        for (int x = 0; x < tw; ++x) templ[std::size_t(y) * tw + x] = map[std::size_t(y + 100) * mw + x + 100];
+    std::vector<Pose> poses(1000);
+    for (std::size_t i = 0; i < poses.size(); ++i) poses[i] = {200.0f + i % 50, 200.0f + i / 50 % 50, 0.01f * (i % 30), 1.4f};
+    std::vector<ParticleScore> out(poses.size());
+    const MapHandle h = b.upload_map({map.data(), mw, mh, mw});
+    const ScoringPlan plan = make_scoring_plan(GrayView{templ.data(), tw, th, tw}, {});
+    b.score(h, plan, poses, out);  // warm-up
+    const auto t0 = std::chrono::steady_clock::now();
+    b.score(h, plan, poses, out);
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+std::unique_ptr<Backend> BackendRegistry::create_fastest(BackendOptions options, std::vector<BackendTiming>* timings) const {
     std::vector<DeviceInfo> devices;
     for (const FamilyStatus& f : status(options)) devices.insert(devices.end(), f.devices.begin(), f.devices.end());
+    std::unique_ptr<Backend> chosen;
     std::string why;
     for (const std::string& name : preferred_order(devices)) {
         try {
-            return create(name, options);
+            std::unique_ptr<Backend> b = create(name, options);
+            if (!timings) return b;
+            timings->push_back({name, time_one_batch(*b)});
+            if (!chosen) chosen = std::move(b);
         } catch (const Error& e) {  // listed but not usable (e.g. cannot build its kernels): the next one
             why += (why.empty() ? "" : "; ") + std::string(e.what());
         }
     }
+    if (chosen) return chosen;
     throw BackendUnavailable("no usable backend for 'fastest'" + (why.empty() ? std::string() : ": " + why));
 }
 

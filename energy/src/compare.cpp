@@ -11,6 +11,7 @@
 #include "text_input.hpp"
 #include "trn/error.hpp"
 #include "trn/io/provenance.hpp"
+#include "trn/detail/json_number.hpp"
 
 namespace trn::energy {
 namespace {
@@ -38,7 +39,7 @@ std::string csv_p(double p) {
 }
 
 // JSON has no NaN/inf; a number that is not finite is written as null.
-json num(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+constexpr auto num = json_number<json>;
 // A p-value that underflowed is written as the bound "< 1e-300", not as 0.
 json pj(double p) { return p >= kSmallestReportedP ? json(p) : std::isnan(p) ? json(nullptr) : json("< 1e-300"); }
 

@@ -58,7 +58,7 @@ BenchResult run_energy_bench(PowerSampler& sampler, const std::vector<BenchTarge
         if (row.usable == 0)
             res.warnings.push_back(targets[i].name + ": none of " + std::to_string(row.frames) + " frames is usable (" +
                                    (r.frames.empty() ? std::string("no frames") : r.frames.front().energy.flag) +
-                                   "): sample faster (--period-ms) or make frames longer (--size, --particles)");
+                                   "): sample faster (a shorter sampling period) or make frames longer (a larger frame or more particles)");
         for (const auto& w : r.warnings) res.warnings.push_back(targets[i].name + ": " + w);
         res.rows.push_back(std::move(row));
     }

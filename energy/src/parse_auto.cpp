@@ -13,7 +13,7 @@ ParseOptions parse_option_list(const std::vector<std::string>& items) {
     ParseOptions o;
     for (const auto& item : items) {
         const auto eq = item.find('=');
-        if (eq == std::string::npos || eq == 0) throw Error("--opt '" + item + "': expected KEY=VALUE");
+        if (eq == std::string::npos || eq == 0) throw Error("parser option '" + item + "': expected KEY=VALUE");
         o[item.substr(0, eq)] = item.substr(eq + 1);
     }
     return o;
@@ -99,7 +99,7 @@ std::string detect_power_log_format(std::string_view input, const std::string& n
         if (numeric && (row.size() == head.size() || row.size() == head.size() + 1)) return "ina219-csv";
     }
     text::fail(name, lines[first].number, "unrecognised power log (first line '" + std::string(l.substr(0, 80)) +
-                                              "'); name the format with --format (" + "see trnkit energy formats)");
+                                              "'); name its format (one of trnkit energy formats)");
 }
 
 namespace {
@@ -112,7 +112,7 @@ PowerTrace parse_in_format(std::string_view input, const std::string& name, cons
 #undef TRN_POWER_FORMAT
     std::string list;
     for (const auto& n : power_log_formats()) list += (list.empty() ? "" : ", ") + n;
-    throw Error("--format '" + format + "': unknown (known: auto, " + list + ")");
+    throw Error("power log format '" + format + "': unknown (known: auto, " + list + ")");
 }
 
 }  // namespace

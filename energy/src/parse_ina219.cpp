@@ -414,7 +414,7 @@ PowerTrace parse_ina219_csv(std::string_view input, const std::string& name, con
     }
     if (powers.size() > 1) b.note("power is the sum of " + std::to_string(powers.size()) + " columns (power=sum): " + quantity);
     b.trace().local_time = b.trace().wall_clock && !zone_known;
-    if (b.trace().local_time) b.note("time stamps have no time zone; taken as UTC (--timezone/--utc-offset to convert)");
+    if (b.trace().local_time) b.note("time stamps have no time zone; taken as UTC (timezone= / utc_offset= to convert)");
     if (!b.trace().w.empty() && *std::min_element(b.trace().w.begin(), b.trace().w.end()) < 0)
         b.note("negative power readings present (shunt offset or reverse current); kept as read");
     return b.finish();

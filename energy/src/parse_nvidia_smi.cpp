@@ -238,7 +238,7 @@ PowerTrace parse_nvidia_smi(std::string_view input, const std::string& name, con
     }
     if (ct >= 0) {
         b.trace().local_time = true;
-        b.note("time stamps have no time zone (the logging machine's local time); taken as UTC (--timezone/--utc-offset to convert)");
+        b.note("time stamps have no time zone (the logging machine's local time); taken as UTC (timezone= / utc_offset= to convert)");
     } else {
         b.note("no timestamp column: rows placed every interval_ms (" + std::to_string(*interval_ms) + " ms) from 0; timing is only as good as that period");
     }

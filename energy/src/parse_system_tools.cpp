@@ -74,7 +74,7 @@ PowerTrace parse_powerstat(std::string_view input, const std::string& name, cons
     if (cw < 0) throw Error(parser + ": no header line 'Time ... Watts'");
     if (day0) {
         b.trace().wall_clock = b.trace().local_time = true;
-        b.note("time of day on date= in the logging machine's local time, 1 s resolution; taken as UTC (--timezone/--utc-offset to convert)");
+        b.note("time of day on date= in the logging machine's local time, 1 s resolution; taken as UTC (timezone= / utc_offset= to convert)");
     } else {
         b.note("time of day only (seconds since midnight of the first day, 1 s resolution); pass date=YYYY-MM-DD for absolute time");
     }
@@ -192,7 +192,7 @@ PowerTrace parse_powerjoular(std::string_view input, const std::string& name, co
     }
     if (!b.trace().t.empty()) b.trace().first_interval_start = b.trace().t.front() - 1.0;
     b.note("each row is the mean power over the 1 s cycle ending at its stamp (PowerJoular's period); stamps have 1 s resolution and no time zone, "
-           "taken as UTC (--timezone/--utc-offset to convert)");
+           "taken as UTC (timezone= / utc_offset= to convert)");
     return b.finish();
 }
 

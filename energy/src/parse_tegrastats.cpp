@@ -147,7 +147,7 @@ PowerTrace parse_tegrastats(std::string_view input, const std::string& name, con
         b.note("lines carry no time stamps: sample i is placed at i x " + std::to_string(interval * 1e3) +
                " ms (assumed tegrastats --interval); timing is only as good as that assumption");
     b.trace().local_time = stamped > 0;
-    if (stamped) b.note("time stamps have 1 s resolution and no time zone; taken as UTC (--timezone/--utc-offset to convert)");
+    if (stamped) b.note("time stamps have 1 s resolution and no time zone; taken as UTC (timezone= / utc_offset= to convert)");
     if (shared) {
         char buf[400];
         std::snprintf(buf, sizeof buf, "%zu lines share their 1 s time stamp with others (up to %zu per stamp): placed %.4g ms apart within their second (%s)%s",

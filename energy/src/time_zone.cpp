@@ -58,13 +58,13 @@ TimeZone TimeZone::fixed(std::string_view text_in, const std::string& option) {
 }
 
 TimeZone TimeZone::named(const std::string& name, const std::string& dir) {
-    if (!plain_zone_name(name)) throw Error("--timezone '" + name + "': not a tz database name such as Europe/Vilnius or America/New_York");
+    if (!plain_zone_name(name)) throw Error("timezone '" + name + "': not a tz database name such as Europe/Vilnius or America/New_York");
     const std::string path = dir + "/" + name;
     std::string d;
     try {
         d = text::read_file(path, 1 << 20);
     } catch (const Error&) {
-        throw Error("--timezone '" + name + "': no such zone (" + path + " cannot be read; is tzdata installed?)");
+        throw Error("timezone '" + name + "': no such zone (" + path + " cannot be read; is tzdata installed?)");
     }
     if (d.size() < 44 || d.compare(0, 4, "TZif") != 0) throw Error(path + ": not a TZif file");
     // Version 2+ files repeat the data with 64-bit times after the 32-bit block: use those.
@@ -108,7 +108,7 @@ TimeZone TimeZone::named(const std::string& name, const std::string& dir) {
 
 double TimeZone::offset_at_utc(double t) const {
     if (t > last_valid_utc_)
-        throw Error("--timezone " + name_ + ": the zone table ends before this log's time stamps; give the offset with --utc-offset");
+        throw Error("timezone " + name_ + ": the zone table ends before this log's time stamps; give the offset as utc_offset instead");
     const auto k = std::upper_bound(transitions_.begin(), transitions_.end(), t) - transitions_.begin();
     return offsets_[static_cast<std::size_t>(k)];
 }
@@ -129,7 +129,7 @@ double TimeZone::local_to_utc(double local, bool* ambiguous) const {
 
 std::optional<TimeZone> take_time_zone(ParseOptions& o) {
     const auto tz = o.find("timezone"), off = o.find("utc_offset");
-    if (tz != o.end() && off != o.end()) throw Error("--timezone and --utc-offset: give one of them");
+    if (tz != o.end() && off != o.end()) throw Error("timezone and utc_offset: give one of them");
     std::optional<TimeZone> z;
     if (tz != o.end()) z = TimeZone::named(tz->second), o.erase(tz);
     else if (off != o.end()) z = TimeZone::fixed(off->second), o.erase(off);
@@ -138,7 +138,7 @@ std::optional<TimeZone> take_time_zone(ParseOptions& o) {
 
 void apply_time_zone(PowerTrace& tr, const TimeZone& zone) {
     if (!tr.local_time)
-        throw Error(tr.source + ": --timezone/--utc-offset given, but this " + tr.format + " log has no local wall-clock time stamps " +
+        throw Error(tr.source + ": timezone/utc_offset given, but this " + tr.format + " log has no local wall-clock time stamps " +
                     (tr.wall_clock ? "(its stamps carry their zone or are UNIX time)" : "(its times are relative)"));
     std::size_t ambiguous = 0;
     auto conv = [&](double& t) {

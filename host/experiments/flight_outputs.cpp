@@ -4,6 +4,7 @@
 #include <map>
 #include <string>
 
+#include "trn/detail/json_number.hpp"
 #include "trn/localize/report.hpp"
 
 namespace trn::experiments {
@@ -17,7 +18,7 @@ double get(const Json& result, const char* key) {
 }
 
 Json flight_result(const localize::LocalizationSummary& s) {
-    auto num = [](double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); };
+    const auto num = json_number<Json>;
     Json j;
     for (const auto& [key, value] : localize::error_numbers(s)) j[key] = num(value);
     j["steps"] = s.steps;

@@ -8,6 +8,7 @@
 #include "table.hpp"
 #include "trn/filter/scorer.hpp"
 #include "world.hpp"
+#include "trn/detail/angles.hpp"
 
 namespace trn::experiments {
 namespace {
@@ -61,10 +62,10 @@ public:
         for (int f = first; f < first + count; ++f) {
             Rng rng(mix_seed(ctx.seed, 2000 + f + (ortho ? 700000 : 0)));
             const double x = rng.uniform(margin, map->image.width - margin), y = rng.uniform(margin, map->image.height - margin);
-            const double yaw = rng.uniform(-M_PI, M_PI);
+            const double yaw = rng.uniform(-kPi, kPi);
             const GrayImage frame = render_at(*world, camera, x, y, yaw, altitude, mix_seed(ctx.seed, 3000 + f));
             for (std::size_t i = 0; i < offsets.size(); ++i)
-                poses[i] = {static_cast<float>(x), static_cast<float>(y), static_cast<float>(yaw + offsets[i] * M_PI / 180), 1};
+                poses[i] = {static_cast<float>(x), static_cast<float>(y), static_cast<float>(yaw + offsets[i] * kPi / 180), 1};
             scorer.score(frame.view(), scale, poses, scores, nullptr);
             const std::size_t zero = 90;  // offsets[90] == 0
             const double base = scores[zero].ncc;

@@ -18,6 +18,7 @@
 #include "trn/localize/localization.hpp"
 #include "trn/localize/report.hpp"
 #include "world.hpp"
+#include "trn/detail/json_number.hpp"
 
 namespace trn::experiments {
 namespace {
@@ -73,7 +74,7 @@ Json fly(const Json& c, const std::string& preset_name, double distance_m, int t
     std::filesystem::create_directories(ctx.job_folder);
     localize::write_rows_csv(ctx.job_folder + "/localization.csv", r.rows);
     if (ctx.plots) localize::plot_run(ctx.job_folder, r.rows, s, map->image.view(), map->metres_per_pixel, preset_name);
-    auto num = [](double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); };
+    const auto num = json_number<Json>;
     Json result = flight_result(s);
     result["altitude_min_m"] = alt_min;
     result["altitude_max_m"] = alt_max;

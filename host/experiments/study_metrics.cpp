@@ -12,6 +12,7 @@
 #include "table.hpp"
 #include "trn/filter/scorer.hpp"
 #include "world.hpp"
+#include "trn/detail/angles.hpp"
 
 namespace trn::experiments {
 namespace {
@@ -61,7 +62,7 @@ public:
         const double margin = half_diag + radius_px + 2;
         if (map->image.width < 2 * margin || map->image.height < 2 * margin) throw Error("metrics: map too small for the footprint");
         const double tx = rng.uniform(margin, map->image.width - margin), ty = rng.uniform(margin, map->image.height - margin);
-        const double tyaw = rng.uniform(-M_PI, M_PI);
+        const double tyaw = rng.uniform(-kPi, kPi);
         GrayImage frame = render_at(*world, camera, tx, ty, tyaw, altitude, mix_seed(ctx.seed, 77 + trial));
         add_dissertation_noise(frame, mix_seed(ctx.seed, 99 + trial));
 
@@ -70,7 +71,7 @@ public:
         std::vector<Pose> poses(n);
         std::vector<double> dist_m(n);
         for (int i = 0; i < n; ++i) {
-            const double r = radius_px * std::sqrt(rng.uniform()), a = rng.uniform(0, 2 * M_PI);
+            const double r = radius_px * std::sqrt(rng.uniform()), a = rng.uniform(0, 2 * kPi);
             poses[i] = {static_cast<float>(tx + r * std::cos(a)), static_cast<float>(ty + r * std::sin(a)), static_cast<float>(tyaw), 1};
             dist_m[i] = r * mpp;
         }

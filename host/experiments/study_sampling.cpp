@@ -10,6 +10,7 @@
 #include "table.hpp"
 #include "trn/localize/localizer.hpp"
 #include "world.hpp"
+#include "trn/detail/angles.hpp"
 
 namespace trn::experiments {
 namespace {
@@ -49,7 +50,7 @@ public:
 
         // Start conditions depend only on the start index (identical for every method).
         Rng rng(mix_seed(ctx.seed, 5000 + start));
-        const double heading = rng.uniform(-M_PI, M_PI);
+        const double heading = rng.uniform(-kPi, kPi);
         const double dx = std::sin(heading) / mpp, dy = -std::cos(heading) / mpp;  // per metre, map pixels
         const double cx = size_m / 2 / mpp + rng.uniform(-200, 200) / mpp, cy = size_m / 2 / mpp + rng.uniform(-200, 200) / mpp;
         double x = cx - dx * flight_m / 2, y = cy - dy * flight_m / 2;
@@ -78,7 +79,7 @@ public:
             localize::Observation in;
             in.odometry_east_m = d * std::sin(h_odo) + rng.normal();
             in.odometry_north_m = d * std::cos(h_odo) + rng.normal();
-            in.heading_rad = heading + (M_PI / 180) * rng.normal();
+            in.heading_rad = heading + (kPi / 180) * rng.normal();
             const GrayImage frame = render_at(*world, camera, x, y, heading, altitude, mix_seed(ctx.seed, 7000 + start * 1000 + it));
             in.frame = frame.view();
             in.map_px_per_camera_px = scale;

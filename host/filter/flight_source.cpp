@@ -8,6 +8,7 @@
 #include "trn/io/input_file.hpp"
 #include "trn/filter/nadir_warp.hpp"
 #include "trn/sim/render.hpp"
+#include "trn/detail/angles.hpp"
 
 namespace trn::filter {
 
@@ -20,7 +21,7 @@ constexpr double kLevelDeg = 1e-6;
 // Tilt of the optical axis from the vertical by the measured attitude (ImuX..W), degrees.
 double tilt_deg(const sim::AirRecord& r) {
     const sim::RollPitch rp = sim::roll_pitch_from_quaternion(r.imu);
-    return sim::tilt_from_nadir(rp.roll_rad, rp.pitch_rad) * 180 / 3.14159265358979323846;
+    return sim::tilt_from_nadir(rp.roll_rad, rp.pitch_rad) * 180 / kPi;
 }
 
 std::string place(const sim::AirReader& r, const std::string& filename) {

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "trn/error.hpp"
+#include "trn/detail/angles.hpp"
 
 namespace trn::filter {
 
@@ -32,7 +33,7 @@ double normal_quantile(double p) {
     }
     // One Halley step on Phi(x) - p.
     const double e = 0.5 * std::erfc(-x / std::sqrt(2.0)) - p;
-    const double u = e * std::sqrt(2 * 3.14159265358979323846) * std::exp(x * x / 2);
+    const double u = e * std::sqrt(2 * kPi) * std::exp(x * x / 2);
     return x - u / (1 + x * u / 2);
 }
 

@@ -5,13 +5,9 @@
 
 #include "trn/detail/splitmix.hpp"
 #include "trn/error.hpp"
+#include "trn/detail/angles.hpp"
 
 namespace trn::filter {
-namespace {
-
-constexpr double kPi = 3.14159265358979323846;
-
-}  // namespace
 
 void LockMonitorConfig::validate() const {
     auto in_range = [](double v, double lo, double hi, const char* name) {

@@ -3,21 +3,9 @@
 #include <string>
 
 #include "trn/error.hpp"
+#include "trn/detail/angles.hpp"
 
 namespace trn::filter {
-namespace {
-
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kDeg = kPi / 180;
-
-double wrap(double a) {
-    a = std::fmod(a + kPi, 2 * kPi);
-    if (a <= 0) a += 2 * kPi;
-    return a - kPi;
-}
-
-}  // namespace
-
 void MotionModel::validate() const {
     auto in_range = [](double v, double lo, double hi, const char* name) {
         if (!(v >= lo && v <= hi))
@@ -50,7 +38,7 @@ StepMotion make_step_motion(double east_m, double north_m, double heading_rad, d
 
 void propagate_particle(const MotionModel& model, const StepMotion& m, double mpp, const std::array<double, 5>& z, double& x,
                         double& y, double& yaw) {
-    yaw = wrap((m.have_heading ? m.heading_rad : yaw) + model.eps_rot_deg * kDeg * z[0]);
+    yaw = wrap_angle((m.have_heading ? m.heading_rad : yaw) + model.eps_rot_deg * kDeg * z[0]);
     const double d = m.distance_px * (1 + model.alpha1 * m.noise_gain * z[1]);
     const double offset = model.along_heading ? 0.0 : m.course_offset_rad;
     const double course = yaw + offset + ((model.alpha2 * m.noise_gain) + model.alpha3 * m.turn_rad) * z[2];

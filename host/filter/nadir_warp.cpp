@@ -7,6 +7,7 @@
 
 #include "trn/error.hpp"
 #include "trn/sim/camera.hpp"
+#include "trn/detail/angles.hpp"
 
 namespace trn::filter {
 namespace {
@@ -54,8 +55,8 @@ NadirFrame warp_to_nadir(GrayView frame, double hfov_deg, double roll_rad, doubl
     auto crop_size = [](int full, double s) { return static_cast<int>(std::floor(s * (full - 1))) + 1; };
     const int width = crop_size(frame.width, lo), height = crop_size(frame.height, lo);
     if (width < 8 || height < 8)
-        throw Error("warp_to_nadir: roll " + std::to_string(roll_rad * 180 / 3.14159265358979323846) + " deg, pitch " +
-                    std::to_string(pitch_rad * 180 / 3.14159265358979323846) + " deg leave no usable level view");
+        throw Error("warp_to_nadir: roll " + std::to_string(roll_rad * 180 / kPi) + " deg, pitch " +
+                    std::to_string(pitch_rad * 180 / kPi) + " deg leave no usable level view");
 
     // Output pixel (i, j) is level pixel (i + ox, j + oy).
     const double ox = (frame.width - width) / 2.0, oy = (frame.height - height) / 2.0;

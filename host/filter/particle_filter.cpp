@@ -10,21 +10,9 @@
 #include "trn/error.hpp"
 #include "trn/filter/kld.hpp"
 #include "trn/limits.hpp"
+#include "trn/detail/angles.hpp"
 
 namespace trn::filter {
-namespace {
-
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kDeg = kPi / 180;
-
-double wrap(double a) {
-    a = std::fmod(a + kPi, 2 * kPi);
-    if (a <= 0) a += 2 * kPi;
-    return a - kPi;
-}
-
-}  // namespace
-
 SamplingMethod parse_sampling_method(std::string_view text) {
     if (text == "kld") return SamplingMethod::Kld;
     if (text == "importance") return SamplingMethod::Importance;
@@ -79,7 +67,7 @@ void ParticleFilter::scatter(double x, double y, double heading, bool have_headi
         const double r = r_px * std::sqrt(uniform()), a = 2 * kPi * uniform();  // uniform over the disc
         p.x = x + r * std::cos(a);
         p.y = y + r * std::sin(a);
-        p.yaw = have_heading ? wrap(heading + heading_sd_deg * kDeg * normal()) : wrap(2 * kPi * uniform());
+        p.yaw = have_heading ? wrap_angle(heading + heading_sd_deg * kDeg * normal()) : wrap_angle(2 * kPi * uniform());
         p.weight = 1;
     }
 }
@@ -105,7 +93,7 @@ StepMotion ParticleFilter::motion_from(const FilterInput& in, bool& lost) {
     }
     const bool have_heading = std::isfinite(in.heading_rad);
     const double frame_heading = have_heading ? in.heading_rad : last_heading_;
-    const double turn = have_heading && std::isfinite(last_heading_) ? wrap(in.heading_rad - last_heading_) : 0;
+    const double turn = have_heading && std::isfinite(last_heading_) ? wrap_angle(in.heading_rad - last_heading_) : 0;
     StepMotion m = make_step_motion(east, north, in.heading_rad, frame_heading, turn, config_.metres_per_pixel);
     if (have_heading) last_heading_ = in.heading_rad;
     m.noise_gain = lost ? 3 : 1;

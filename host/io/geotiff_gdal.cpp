@@ -103,7 +103,7 @@ GeoTiff read_geotiff(const std::string& path) {
     // Where the pixels are: north-up, square, in metres. A rotated geotransform would need the
     // filter to work in a rotated frame; better refused than silently mislocated.
     if (ds->GetGeoTransform(g.geotransform.data()) != CE_None)
-        throw Error(path + ": no geotransform; the file is not georeferenced (give a PNG map with --mpp instead)");
+        throw Error(path + ": no geotransform; the file is not georeferenced (give a PNG map and its metres per pixel instead)");
     const auto& gt = g.geotransform;
     if (gt[2] != 0 || gt[4] != 0)
         throw Error(path + ": the geotransform is rotated or sheared (row/column terms " + number(gt[2]) + ", " + number(gt[4]) +

@@ -6,7 +6,7 @@ namespace trn::io {
 namespace {
 [[noreturn]] void no_gdal(const std::string& path) {
     throw Error(path + ": GeoTIFF maps are read with GDAL, and this build of trnkit has none (install libgdal-dev, "
-                       "scripts/install-deps.sh, and rebuild; or give a PNG map with --mpp)");
+                       "scripts/install-deps.sh, and rebuild; or give a PNG map and its metres per pixel)");
 }
 }  // namespace
 

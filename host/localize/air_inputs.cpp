@@ -9,11 +9,12 @@
 #include "trn/field_error.hpp"
 #include "trn/io/geotiff.hpp"
 #include "trn/sim/air_format.hpp"
+#include "trn/detail/angles.hpp"
 
 namespace trn::localize {
 namespace {
 
-constexpr double kDeg = 180.0 / 3.14159265358979323846;
+constexpr double kDegPerRad = 180.0 / kPi;  // degrees per radian (trn::kDeg is radians per degree)
 
 std::string number(double v) {
     char buf[40];
@@ -24,8 +25,8 @@ std::string number(double v) {
 // Inverse of sim::map_pixel_to_latlon (flight.json's origin, local equirectangular projection).
 std::array<double, 2> origin_latlon_to_pixel(const sim::GeoOrigin& o, double mpp, double lat, double lon) {
     constexpr double kEarthRadius = 6378137.0;
-    const double south = (o.latitude_deg - lat) / kDeg * kEarthRadius;
-    const double east = (lon - o.longitude_deg) / kDeg * kEarthRadius * std::cos(o.latitude_deg / kDeg);
+    const double south = (o.latitude_deg - lat) / kDegPerRad * kEarthRadius;
+    const double east = (lon - o.longitude_deg) / kDegPerRad * kEarthRadius * std::cos(o.latitude_deg / kDegPerRad);
     return {east / mpp, south / mpp};
 }
 
@@ -35,7 +36,7 @@ double option_hfov(const AirInputOptions& o) {
     if (o.hfov_deg > 0 && o.focal_px > 0) throw FieldError("hfov_deg", "give `hfov_deg` or `focal_px`, not both");
     if ((o.focal_px > 0) != (o.focal_width > 0))
         throw FieldError("focal_px", "`focal_px` and `focal_width` go together: the focal length in pixels of frames that many pixels wide");
-    if (o.focal_px > 0) return 2 * std::atan(0.5 * o.focal_width / o.focal_px) * kDeg;
+    if (o.focal_px > 0) return 2 * std::atan(0.5 * o.focal_width / o.focal_px) * kDegPerRad;
     return o.hfov_deg;
 }
 

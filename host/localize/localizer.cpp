@@ -2,6 +2,7 @@
 
 #include <cstdio>
 
+#include "trn/detail/angles.hpp"
 #include "trn/error.hpp"
 #include "trn/sim/air_format.hpp"
 #include "trn/sim/camera.hpp"
@@ -12,7 +13,6 @@ namespace {
 // Below this the frame is taken as level and left as it is (as the AIR flight source does: a
 // quaternion written for roll = pitch = 0 reads back as ~1e-14 deg).
 constexpr double kLevelDeg = 1e-6;
-constexpr double kDegPerRad = 180 / 3.14159265358979323846;
 
 std::string number(double v) {
     char buf[32];
@@ -91,7 +91,7 @@ Estimate Localizer::step(const Observation& o) {
             in.map_px_per_camera_px = sim::template_scale(own, o.altitude_agl_m, mpp_);
         }
         if (o.has_attitude) {
-            e.tilt_deg = sim::tilt_from_nadir(o.roll_rad, o.pitch_rad) * kDegPerRad;
+            e.tilt_deg = sim::tilt_from_nadir(o.roll_rad, o.pitch_rad) * 180 / kPi;  // as filter::AirFlightSource computes it
             e.too_oblique = e.tilt_deg > config_.max_tilt_deg;
             if (!e.too_oblique && e.tilt_deg > kLevelDeg) {
                 if (std::isnan(config_.camera_hfov_deg)) throw Error("localizer: a step with an attitude needs camera_hfov_deg in the config");

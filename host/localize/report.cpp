@@ -13,6 +13,7 @@
 #include "trn/io/atomic_file.hpp"
 #include "trn/io/gnuplot.hpp"
 #include "trn/io/provenance.hpp"
+#include "trn/detail/json_number.hpp"
 
 namespace trn::localize {
 namespace {
@@ -71,7 +72,7 @@ std::vector<std::pair<std::string, double>> error_numbers(const LocalizationSumm
 void write_summary_json(const std::string& path, const LocalizationSummary& s, const std::map<std::string, std::string>& strings,
                         const std::map<std::string, double>& numbers) {
     nlohmann::ordered_json j;
-    auto num = [](double v) { return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr); };
+    const auto num = json_number<nlohmann::ordered_json>;
     j["ground_truth"] = has_errors(s);
     if (has_errors(s)) {
         for (const auto& [key, value] : error_numbers(s)) j[key] = num(value);

@@ -14,11 +14,10 @@
 #include "trn/io/atomic_file.hpp"
 #include "trn/io/input_file.hpp"
 #include "trn/io/provenance.hpp"
+#include "trn/detail/angles.hpp"
 
 namespace trn::sim {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // The 20 columns in writer order; numeric_field(i) is where column i goes.
 const std::vector<std::string> kColumns = {

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "trn/error.hpp"
+#include "trn/detail/angles.hpp"
 
 namespace trn::sim {
 
@@ -25,7 +26,7 @@ double AltitudeProfile::altitude_m(double t) const {
     const double from = k % 2 ? b_m_ : a_m_, to = k % 2 ? a_m_ : b_m_;
     if (k == changes_ || in_leg <= leg_s_) return from;
     const double f = std::min(1.0, (in_leg - leg_s_) / climb_s_);
-    return from + (to - from) * (1 - std::cos(3.14159265358979323846 * f)) / 2;
+    return from + (to - from) * (1 - std::cos(kPi * f)) / 2;
 }
 
 }  // namespace trn::sim

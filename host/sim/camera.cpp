@@ -6,10 +6,11 @@
 
 #include "trn/error.hpp"
 #include "trn/limits.hpp"
+#include "trn/detail/angles.hpp"
 
 namespace trn::sim {
 
-double Camera::focal_px() const { return 0.5 * width / std::tan(0.5 * hfov_deg * 3.14159265358979323846 / 180.0); }
+double Camera::focal_px() const { return 0.5 * width / std::tan(0.5 * hfov_deg * kPi / 180.0); }
 
 void Camera::validate() const {
     if (width < 2 || height < 2)

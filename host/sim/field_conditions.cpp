@@ -4,12 +4,9 @@
 #include <cmath>
 
 #include "random.hpp"
+#include "trn/detail/angles.hpp"
 
 namespace trn::sim {
-namespace {
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kDeg = kPi / 180;
-}  // namespace
 
 FieldConditions::FieldConditions(const Realism& realism, double nominal_altitude_m, double first_course_rad, std::uint64_t seed)
     : realism_(realism), nominal_altitude_m_(nominal_altitude_m) {

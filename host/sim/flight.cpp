@@ -5,11 +5,10 @@
 
 #include "random.hpp"
 #include "trn/error.hpp"
+#include "trn/detail/angles.hpp"
 
 namespace trn::sim {
 namespace {
-
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
 
 // Half the diagonal of the camera footprint on the ground, metres (level camera).
 double footprint_radius_m(const Camera& c, double altitude_m) {
@@ -116,8 +115,8 @@ bool FlightSimulator::next(FlightFrame& f) {
     if (config_.camera_roll_pitch_sd_deg > 0) {
         const std::uint64_t h = detail::hash(config_.seed, 77);
         const double sd = config_.camera_roll_pitch_sd_deg * kDeg * std::sqrt(2.0);
-        f.truth.roll_rad = sd * std::sin(2 * 3.14159265 * 0.31 * t + 6.28 * detail::unit(h, 0));
-        f.truth.pitch_rad = sd * std::sin(2 * 3.14159265 * 0.23 * t + 6.28 * detail::unit(h, 1));
+        f.truth.roll_rad = sd * std::sin(2 * kPi * 0.31 * t + 2 * kPi * detail::unit(h, 0));
+        f.truth.pitch_rad = sd * std::sin(2 * kPi * 0.23 * t + 2 * kPi * detail::unit(h, 1));
     } else {
         f.truth.roll_rad = f.truth.pitch_rad = 0;
     }

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "trn/error.hpp"
+#include "trn/detail/angles.hpp"
 
 namespace trn::sim {
 
@@ -17,11 +18,11 @@ Map load_map(const std::string& path, double metres_per_pixel, std::optional<Geo
 }
 
 LatLon map_pixel_to_latlon(const Map& map, double x, double y) {
-    constexpr double kEarthRadius = 6378137.0, kDeg = 180.0 / 3.14159265358979323846;
+    constexpr double kEarthRadius = 6378137.0, kDegPerRad = 180.0 / kPi;
     const GeoOrigin o = map.origin.value_or(GeoOrigin{});
     const double east = x * map.metres_per_pixel, south = y * map.metres_per_pixel;
-    const double lat = o.latitude_deg - south / kEarthRadius * kDeg;
-    const double lon = o.longitude_deg + east / (kEarthRadius * std::cos(o.latitude_deg / kDeg)) * kDeg;
+    const double lat = o.latitude_deg - south / kEarthRadius * kDegPerRad;
+    const double lon = o.longitude_deg + east / (kEarthRadius * std::cos(o.latitude_deg / kDegPerRad)) * kDegPerRad;
     return {lat, lon};
 }
 

@@ -8,6 +8,7 @@
 
 #include "random.hpp"
 #include "trn/error.hpp"
+#include "trn/detail/angles.hpp"
 
 namespace trn::sim {
 namespace {
@@ -58,7 +59,7 @@ Map age_map(const Map& map, const MapAgeingOptions& o) {
         const float level = sorted[k];
         cv::Mat smooth;
         cv::GaussianBlur(img, smooth, cv::Size(0, 0), 2.0 * px_per_m);
-        const double angle = detail::uniform(rng) * 3.14159, period_px = std::max(2.6, 4.0 * px_per_m);
+        const double angle = detail::uniform(rng) * kPi, period_px = std::max(2.6, 4.0 * px_per_m);
         const double tone = 0.75 + 0.5 * detail::uniform(rng);
         for (int y = 0; y < size.height; ++y) {
             float* row = img.ptr<float>(y);
@@ -68,7 +69,7 @@ Map age_map(const Map& map, const MapAgeingOptions& o) {
                 // Soft edge over a few percent of the noise range.
                 const double w = std::clamp((b[x] - level) / 0.02, 0.0, 1.0);
                 if (w <= 0) continue;
-                const double rows = 12 * std::sin(6.2832 * (x * std::cos(angle) + y * std::sin(angle)) / period_px);
+                const double rows = 12 * std::sin(2 * kPi * (x * std::cos(angle) + y * std::sin(angle)) / period_px);
                 row[x] = static_cast<float>((1 - w) * row[x] + w * (s[x] * tone + rows));
             }
         }
@@ -80,7 +81,7 @@ Map age_map(const Map& map, const MapAgeingOptions& o) {
     const int count = static_cast<int>(std::lround(area_km2 * o.new_buildings_per_km2_per_year * o.years));
     cv::Mat blurred;
     cv::GaussianBlur(img, blurred, cv::Size(0, 0), 6.0 * px_per_m);
-    const double sun = 6.2832 * detail::uniform(rng), shadow_len = (4 + 6 * detail::uniform(rng)) * px_per_m;
+    const double sun = 2 * kPi * detail::uniform(rng), shadow_len = (4 + 6 * detail::uniform(rng)) * px_per_m;
     for (int i = 0; i < 2 * count; ++i) {
         const double cx = detail::uniform(rng) * size.width, cy = detail::uniform(rng) * size.height;
         const double w = o.building_size_m * px_per_m * (0.7 + 0.7 * detail::uniform(rng));

@@ -13,13 +13,13 @@
 #include "random.hpp"
 #include "trn/error.hpp"
 #include "trn/limits.hpp"
+#include "trn/detail/angles.hpp"
 
 namespace trn::sim {
 namespace {
 
 using detail::hash;
 using detail::unit;
-constexpr double kPi = 3.14159265358979323846;
 
 // Smooth value noise on a hashed lattice with cell `cell_m` metres; values in [0, 1). The lattice
 // over the region being generated is tabulated once, so a lookup is four loads, not four hashes.

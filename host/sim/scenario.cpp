@@ -5,11 +5,11 @@
 
 #include "trn/error.hpp"
 #include "trn/sim/sensors.hpp"
+#include "trn/detail/angles.hpp"
 
 namespace trn::sim {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kTurnRadiusM = 40;  // U-turns of the line, corners of the rectangle
 
 // Flight distances of the dissertation's AIR flights (Table 2.2), metres, in preset order

@@ -4,19 +4,9 @@
 #include <cmath>
 
 #include "random.hpp"
+#include "trn/detail/angles.hpp"
 
 namespace trn::sim {
-namespace {
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
-}
-
-double wrap_angle(double a) {
-    constexpr double kTwoPi = 6.283185307179586;
-    a = std::fmod(a, kTwoPi);
-    if (a <= -kTwoPi / 2) a += kTwoPi;
-    if (a > kTwoPi / 2) a -= kTwoPi;
-    return a;
-}
 
 OdometrySimulator::OdometrySimulator(const OdometryConfig& config)
     : config_(config),

@@ -12,8 +12,11 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "cli_process.hpp"
+#include "trn/detail/angles.hpp"
 
 namespace {
+
+using trn::kPi;
 
 using trn::test::run_trnkit;
 
@@ -45,9 +48,9 @@ TEST_F(LongFlightCli, SimulateMakesAMapThatHoldsTheLongLoopAtTheHighestAltitude)
     ASSERT_EQ(r.code, 0) << r.output;
     const cv::Mat map = cv::imread(path("fr/map.png"), cv::IMREAD_GRAYSCALE);
     ASSERT_FALSE(map.empty());
-    const double size = (4748 + (8 - 2 * M_PI) * 40) / 3.4;
+    const double size = (4748 + (8 - 2 * kPi) * 40) / 3.4;
     const double loop_width = size * std::cos(0.52) + 0.7 * size * std::sin(0.52);
-    const double footprint_radius = 0.5 * 800 * 300 / (320 / std::tan(M_PI / 6));
+    const double footprint_radius = 0.5 * 800 * 300 / (320 / std::tan(kPi / 6));
     EXPECT_GE(map.cols * 2, loop_width + 2 * footprint_radius) << "2 m per pixel";
     const auto back = run_trnkit("simulate --read " + path("fr"));
     EXPECT_EQ(back.code, 0) << back.output;

@@ -12,7 +12,7 @@
 #include <map>
 #include <memory>
 
-#include "backend_env.hpp"
+#include "backend_env.hpp"  // the TRN_* variables -> BackendOptions, as the CLI reads them
 #include "cases.hpp"
 #include "trn/registry.hpp"
 
@@ -120,7 +120,7 @@ int main(int argc, char** argv) {
     for (auto&& group : {trn::conformance::ncc_cases(), trn::conformance::sobel_cases(), trn::conformance::error_cases()})
         cases.insert(cases.end(), group.begin(), group.end());
 
-    const trn::BackendOptions base = trn::cli::backend_options_from_environment();
+    const trn::BackendOptions base = trn::test::backend_options_from_environment();
     std::shared_ptr<trn::Backend> ref = registry.create("cpu-ref");
     std::vector<std::shared_ptr<trn::Backend>> owned;
     for (const trn::DeviceInfo& d : devices)

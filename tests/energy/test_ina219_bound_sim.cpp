@@ -16,6 +16,7 @@
 #include "synthetic_run.hpp"
 #include "trn/energy/parsers.hpp"
 #include "trn/energy/run_report.hpp"
+#include "trn/detail/angles.hpp"
 
 namespace trn::energy {
 namespace {
@@ -35,7 +36,7 @@ struct SimResult {
 
 // Load: idle 0.2 A, frames 0.8 A drifting +-5 % at 3 Hz (clocks, temperature); bus 5 V drooping 50 mV/A.
 double load_a(const MarkerFile& m, double t) {
-    return test::busy_at(m, t) ? 0.8 * (1 + 0.05 * std::sin(2 * M_PI * 3 * t)) : 0.2;
+    return test::busy_at(m, t) ? 0.8 * (1 + 0.05 * std::sin(2 * kPi * 3 * t)) : 0.2;
 }
 double bus_v(double i) { return 5.0 - 0.05 * i; }
 

@@ -7,6 +7,7 @@
 
 #include "trn/error.hpp"
 #include "trn/energy/integrate.hpp"
+#include "trn/detail/angles.hpp"
 
 using namespace trn::energy;
 
@@ -26,7 +27,7 @@ PowerTrace sampled(const std::function<double(double)>& p, double t0, double t1,
     return tr;
 }
 
-constexpr double kPi = 3.14159265358979323846;
+using trn::kPi;
 
 }  // namespace
 

@@ -62,7 +62,7 @@ TEST(TimeZone, OptionsConvertOnlyLocalStamps) {
         parse_power_log("time_s,power_mW\n1764590400.0,2000\n1764590400.1,2100\n", "e.csv", "auto", {{"utc_offset", "+01:00"}});
         FAIL() << "zone applied to UNIX time";
     } catch (const trn::Error& e) {
-        EXPECT_NE(std::string(e.what()).find("e.csv: --timezone/--utc-offset given, but this ina219-csv log has no local"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("e.csv: timezone/utc_offset given, but this ina219-csv log has no local"), std::string::npos) << e.what();
     }
 }
 

@@ -8,12 +8,11 @@
 
 #include "trn/error.hpp"
 #include "trn/filter/motion_model.hpp"
+#include "trn/detail/angles.hpp"
 
 namespace trn::filter {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kDeg = kPi / 180;
 const std::array<double, 5> kNoNoise{0, 0, 0, 0, 0};
 
 // A curved track (course turning from east towards south) flown with a crab angle that swings

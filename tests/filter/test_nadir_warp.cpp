@@ -9,10 +9,11 @@
 #include "trn/filter/nadir_warp.hpp"
 #include "trn/sim/procedural_map.hpp"
 #include "trn/sim/render.hpp"
+#include "trn/detail/angles.hpp"
 
 namespace {
 
-constexpr double kDeg = 3.14159265358979323846 / 180;
+using trn::kDeg;
 
 // NCC of b against the centred crop of a with b's size.
 double centred_ncc(const trn::GrayImage& a, const trn::GrayImage& b) {

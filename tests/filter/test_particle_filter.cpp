@@ -8,6 +8,7 @@
 #include "filter_test_world.hpp"
 #include "trn/error.hpp"
 #include "trn/filter/particle_filter.hpp"
+#include "trn/detail/angles.hpp"
 #include "trn/localize/localization.hpp"
 
 namespace trn::filter {
@@ -230,7 +231,7 @@ TEST(ParticleFilter, InitialParticlesLieWithinTheInitRadiusAroundTheHeadingPrior
         mean_cos /= pf.particles().size();
         EXPECT_LE(farthest, r_px) << radius_m;
         EXPECT_GT(farthest, 0.9 * r_px) << radius_m << ": the disc should be filled, not a point";
-        EXPECT_GT(mean_cos, std::cos(3 * 3.14159265358979 / 180)) << "headings should stay within a few sd of the prior";
+        EXPECT_GT(mean_cos, std::cos(3 * kPi / 180)) << "headings should stay within a few sd of the prior";
     }
     FilterConfig bad = small_config();
     bad.init_heading_sd_deg = -1;

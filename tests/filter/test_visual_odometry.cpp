@@ -11,10 +11,11 @@
 #include "trn/error.hpp"
 #include "trn/filter/visual_odometry.hpp"
 #include "trn/sim/render.hpp"
+#include "trn/detail/angles.hpp"
 
 namespace {
 
-constexpr double kDeg = 3.14159265358979323846 / 180;
+using trn::kDeg;
 constexpr double kBoundM = 0.15;
 
 struct Pair {

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "backend_env.hpp"  // the CLI's TRN_* variables -> BackendOptions (these tests use them)
+#include "backend_env.hpp"  // the TRN_* variables -> BackendOptions, as the CLI reads them
 #include "../common/test_images.hpp"
 #include "cl_devices.hpp"
 #include "trn/registry.hpp"

@@ -85,7 +85,7 @@ TEST(OpenClBuildErrors, MapLargerThanTheDeviceCanHoldIsAClearError) {
     const int side = 32768;
     if (max_alloc >= cl_ulong(side) * side)
         GTEST_SKIP() << "this device can hold a " << side << "x" << side << " map (the largest trn::limits allows) in one buffer";
-    auto b = default_registry().create("opencl:0", cli::backend_options_from_environment());
+    auto b = default_registry().create("opencl:0", test::backend_options_from_environment());
     // The size check comes before any pixel is read, so one row of real pixels suffices as data.
     std::vector<std::uint8_t> row(side, 100);
     try {

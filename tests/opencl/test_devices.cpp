@@ -38,20 +38,20 @@ TEST(OpenClDevices, SelectedByIndexNameAndEnvironment) {
     const DeviceInfo& last = opencl_status(all).devices.back();
     const std::string index = last.name.substr(last.name.find(':') + 1);
 
-    EXPECT_EQ(default_registry().create(last.name, cli::backend_options_from_environment())->info().device, last.device);
+    EXPECT_EQ(default_registry().create(last.name, test::backend_options_from_environment())->info().device, last.device);
     // A lower-case piece of the device name picks it as well.
     std::string piece = last.device.substr(0, std::min<std::size_t>(6, last.device.size()));
     std::transform(piece.begin(), piece.end(), piece.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    EXPECT_EQ(default_registry().create("opencl:" + piece, cli::backend_options_from_environment())->info().device.substr(0, piece.size()).size(), piece.size());
+    EXPECT_EQ(default_registry().create("opencl:" + piece, test::backend_options_from_environment())->info().device.substr(0, piece.size()).size(), piece.size());
     {
         ScopedEnv env("TRN_OPENCL_DEVICE", index);
-        EXPECT_EQ(default_registry().create("opencl", cli::backend_options_from_environment())->info().name, last.name);
+        EXPECT_EQ(default_registry().create("opencl", test::backend_options_from_environment())->info().name, last.name);
     }
     {
         ScopedEnv env("TRN_OPENCL_DEVICE", std::string("no-such-device-xyz"));
-        EXPECT_THROW(default_registry().create("opencl", cli::backend_options_from_environment()), BackendUnavailable);
+        EXPECT_THROW(default_registry().create("opencl", test::backend_options_from_environment()), BackendUnavailable);
     }
-    EXPECT_THROW(default_registry().create("opencl:999", cli::backend_options_from_environment()), BackendUnavailable);
+    EXPECT_THROW(default_registry().create("opencl:999", test::backend_options_from_environment()), BackendUnavailable);
 }
 
 }  // namespace

@@ -75,7 +75,7 @@ TEST_P(OpenClNccTiles, MatchesCpuRefForEveryShape) {
     TRN_REQUIRE_OPENCL_DEVICE();
     const std::string group = GetParam();
     ScopedEnv env("TRN_OPENCL_WORK_GROUP", group.empty() ? std::nullopt : std::optional<std::string>(group));
-    const auto dut = default_registry().create("opencl", cli::backend_options_from_environment());
+    const auto dut = default_registry().create("opencl", test::backend_options_from_environment());
     const auto ref = default_registry().create("cpu-ref");
     if (!group.empty())
         EXPECT_NE(dut->info().details.find("NCC work-group " + group + ","), std::string::npos) << dut->info().details;

@@ -40,19 +40,19 @@ TEST(OpenClProgramCache, ColdBuildStoresBinariesAndWarmStartLoadsThem) {
     ScopedEnv on("TRN_OPENCL_CACHE", std::nullopt);
     const auto dir = tmp.path() / "trnkit" / "opencl";
 
-    auto cold = default_registry().create("opencl:0", cli::backend_options_from_environment());
+    auto cold = default_registry().create("opencl:0", test::backend_options_from_environment());
     EXPECT_NE(cold->info().details.find("built from source"), std::string::npos) << cold->info().details;
     const auto entries = files_with_extension(dir, ".bin");
     EXPECT_EQ(entries.size(), 2u) << "one entry each for ncc_score.cl and sobel3x3.cl in " << dir;
     EXPECT_TRUE(files_with_extension(dir, ".tmp").empty());
 
-    auto warm = default_registry().create("opencl:0", cli::backend_options_from_environment());
+    auto warm = default_registry().create("opencl:0", test::backend_options_from_environment());
     EXPECT_NE(warm->info().details.find("loaded from the cache"), std::string::npos) << warm->info().details;
     expect_same_scores(score_fixed_problem(*cold), score_fixed_problem(*warm));
 
     // Both build times are now on record for `trnkit devices --verbose`.
     std::string listed;
-    for (const FamilyStatus& f : default_registry().status(cli::backend_options_from_environment()))
+    for (const FamilyStatus& f : default_registry().status(test::backend_options_from_environment()))
         if (f.family == "opencl") listed = f.devices.at(0).details;
     EXPECT_NE(listed.find("cold build"), std::string::npos) << listed;
     EXPECT_EQ(listed.find("not yet measured"), std::string::npos) << listed;
@@ -64,16 +64,16 @@ TEST(OpenClProgramCache, DamagedEntryIsRebuiltAndReplaced) {
     ScopedEnv xdg("XDG_CACHE_HOME", tmp.path().string());
     ScopedEnv on("TRN_OPENCL_CACHE", std::nullopt);
     const auto dir = tmp.path() / "trnkit" / "opencl";
-    const auto reference = score_fixed_problem(*default_registry().create("opencl:0", cli::backend_options_from_environment()));
+    const auto reference = score_fixed_problem(*default_registry().create("opencl:0", test::backend_options_from_environment()));
 
     for (const auto& entry : files_with_extension(dir, ".bin")) {
         std::ofstream f(entry, std::ios::binary | std::ios::trunc);
         f << "trnkit-opencl-binary v1\nthis is not a program binary";
     }
-    auto rebuilt = default_registry().create("opencl:0", cli::backend_options_from_environment());
+    auto rebuilt = default_registry().create("opencl:0", test::backend_options_from_environment());
     EXPECT_NE(rebuilt->info().details.find("built from source"), std::string::npos) << rebuilt->info().details;
     expect_same_scores(reference, score_fixed_problem(*rebuilt));
-    auto warm = default_registry().create("opencl:0", cli::backend_options_from_environment());
+    auto warm = default_registry().create("opencl:0", test::backend_options_from_environment());
     EXPECT_NE(warm->info().details.find("loaded from the cache"), std::string::npos) << "the damaged entries were replaced";
 }
 
@@ -97,10 +97,10 @@ TEST(OpenClProgramCache, OffSwitchWritesNothing) {
     TempDir tmp;
     ScopedEnv xdg("XDG_CACHE_HOME", tmp.path().string());
     ScopedEnv off("TRN_OPENCL_CACHE", std::string("0"));
-    auto b = default_registry().create("opencl:0", cli::backend_options_from_environment());
+    auto b = default_registry().create("opencl:0", test::backend_options_from_environment());
     EXPECT_NE(b->info().details.find("built from source"), std::string::npos);
     EXPECT_FALSE(std::filesystem::exists(tmp.path() / "trnkit")) << "TRN_OPENCL_CACHE=0 must not touch the disk";
-    EXPECT_FALSE(opencl::program_cache_settings(cli::backend_options_from_environment().opencl).enabled);
+    EXPECT_FALSE(opencl::program_cache_settings(test::backend_options_from_environment().opencl).enabled);
 }
 
 }  // namespace

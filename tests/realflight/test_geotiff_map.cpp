@@ -15,12 +15,15 @@
 #ifdef TRN_HAVE_GDAL
 #include <gdal_priv.h>
 #include <ogr_spatialref.h>
+#include "trn/detail/angles.hpp"
 #endif
 
 using trn::test::RealAirFolder;
 using trn::test::run_trnkit;
 
 namespace {
+
+using trn::kPi;
 
 // UTM zone 32N on its central meridian (9 E): easting 500000 m is longitude 9 exactly and the
 // northing is k0 * (meridian arc), so 0.9996 * 4984944.378 m (WGS84 arc to 45 N) = 4982950.400 m
@@ -85,7 +88,7 @@ TEST(GeoTiffMap, ResolutionAndLatLonOfAKnownPixelMatchTheHandComputedUtmValues) 
     EXPECT_NEAR(p.longitude_deg, 9.0, 1e-8);
     // 200 px (100 m) east at 45 N: 100 m / (cos 45 * 111.3 km/deg) ~ 0.00127 deg of longitude.
     const trn::io::GeoPoint e = geo.to_latlon(kPixelX + 200, kPixelY);
-    EXPECT_NEAR(e.longitude_deg - 9.0, 100 / (std::cos(45 * 3.14159265358979 / 180) * 111319.49), 2e-6);
+    EXPECT_NEAR(e.longitude_deg - 9.0, 100 / (std::cos(45 * kPi / 180) * 111319.49), 2e-6);
     const auto back = geo.to_pixel(p.latitude_deg, p.longitude_deg);  // the inverse, to 1 um
     EXPECT_NEAR(back[0], kPixelX, 2e-6);
     EXPECT_NEAR(back[1], kPixelY, 2e-6);

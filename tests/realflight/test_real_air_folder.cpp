@@ -8,11 +8,14 @@
 
 #include "real_air_fixture.hpp"
 #include "trn/sim/air_format.hpp"
+#include "trn/detail/angles.hpp"
 
 using trn::test::RealAirFolder;
 using trn::test::run_trnkit;
 
 namespace {
+
+using trn::kPi;
 constexpr const char* kOptions = "--mpp 0.5 --hfov-deg 60";  // what register's flight.json says
 }
 
@@ -107,7 +110,7 @@ TEST_F(RealAirFolder, FramesTooObliqueAreSkippedAndCounted) {
         if (roll_deg > 0) {
             const trn::sim::Quaternion q{std::stod(cells[col("ImuX")]), std::stod(cells[col("ImuY")]), std::stod(cells[col("ImuZ")]),
                                          std::stod(cells[col("ImuW")])};
-            const trn::sim::Quaternion t = trn::sim::attitude_quaternion(trn::sim::heading_from_quaternion(q), roll_deg * 3.14159265358979 / 180);
+            const trn::sim::Quaternion t = trn::sim::attitude_quaternion(trn::sim::heading_from_quaternion(q), roll_deg * kPi / 180);
             cells[col("ImuX")] = std::to_string(t.x), cells[col("ImuY")] = std::to_string(t.y);
             cells[col("ImuZ")] = std::to_string(t.z), cells[col("ImuW")] = std::to_string(t.w);
         }

@@ -8,14 +8,17 @@
 #include <filesystem>
 #include <fstream>
 
-#include "frame_registration.hpp"
-#include "real_air_folder.hpp"
+#include "trn/filter/frame_registration.hpp"
+#include "trn/filter/real_air_folder.hpp"
 #include "trn/sim/air_format.hpp"
 #include "trn/sim/camera.hpp"
 #include "trn/error.hpp"
 #include "trn/registry.hpp"
+#include "trn/detail/angles.hpp"
 
 namespace {
+
+using trn::kPi;
 
 std::string shared_data() {
     const char* d = std::getenv("TRN_SHARED_DATA");
@@ -105,8 +108,8 @@ TEST(RealFlightAir, FolderReadsBackWithThePosesAsTruth) {
         EXPECT_NEAR(r.map_x, p.x, 1e-3);
         EXPECT_NEAR(r.map_y, p.y, 1e-3);
         const double truth = trn::sim::heading_from_quaternion(r.orientation);
-        EXPECT_NEAR(std::remainder(truth - p.yaw, 2 * M_PI), 0, 1e-6) << r.filename;
-        EXPECT_LE(std::abs(std::remainder(trn::sim::heading_from_quaternion(r.imu) - truth, 2 * M_PI)), 2.0 * M_PI / 180 + 1e-9);
+        EXPECT_NEAR(std::remainder(truth - p.yaw, 2 * kPi), 0, 1e-6) << r.filename;
+        EXPECT_LE(std::abs(std::remainder(trn::sim::heading_from_quaternion(r.imu) - truth, 2 * kPi)), 2.0 * kPi / 180 + 1e-9);
         // Each frame as it is, at its own size; the scale with its own focal length is the found one.
         const trn::GrayImage img = reader.load_image(r);
         EXPECT_EQ(img.pixels, frames[k].pixels) << r.filename;

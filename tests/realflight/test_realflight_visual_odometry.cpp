@@ -9,7 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "frame_registration.hpp"
+#include "trn/filter/frame_registration.hpp"
 #include "trn/filter/visual_odometry.hpp"
 #include "trn/io/image_io.hpp"
 

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "sim_test_maps.hpp"
+#include "trn/detail/angles.hpp"
 #include "trn/sim/air_format.hpp"
 
 namespace trn::sim {

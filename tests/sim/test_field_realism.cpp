@@ -9,11 +9,11 @@
 #include "sim_test_maps.hpp"
 #include "trn/sim/air_format.hpp"
 #include "trn/sim/flight.hpp"
+#include "trn/detail/angles.hpp"
 
 namespace trn::sim {
 namespace {
 
-constexpr double kDeg = 3.14159265358979323846 / 180;
 
 struct FlightStats {
     double min_offset_deg = 1e9, max_offset_deg = -1e9;  // camera heading - course

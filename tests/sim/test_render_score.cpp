@@ -12,6 +12,7 @@
 #include "trn/sim/camera.hpp"
 #include "trn/sim/map_ageing.hpp"
 #include "trn/sim/render.hpp"
+#include "trn/detail/angles.hpp"
 
 namespace trn::sim {
 namespace {
@@ -30,7 +31,7 @@ PeakResult score_peak(const Map& scoring_map, const GrayImage& frame, const Came
     std::vector<Pose> poses{{float(pose.map_x), float(pose.map_y), float(pose.yaw_rad), scale}};
     const double d = offset_m / scoring_map.metres_per_pixel;
     for (int k = 0; k < 8; ++k) {
-        const double a = k * 3.14159265358979 / 4;
+        const double a = k * kPi / 4;
         poses.push_back({float(pose.map_x + d * std::cos(a)), float(pose.map_y + d * std::sin(a)), float(pose.yaw_rad), scale});
     }
     std::vector<ParticleScore> scores(poses.size());
@@ -128,7 +129,7 @@ TEST(RenderScore, RealOrthophoto) {
 
 TEST(Camera, TemplateScaleAndLevelHomographyMatchTheScoringConvention) {
     const Camera cam;
-    EXPECT_NEAR(cam.focal_px(), 320 / std::tan(3.14159265358979 / 6), 1e-9);
+    EXPECT_NEAR(cam.focal_px(), 320 / std::tan(kPi / 6), 1e-9);
     const double s = template_scale(cam, 200, 0.5);
     EXPECT_NEAR(s, 200 / (cam.focal_px() * 0.5), 1e-12);
     const CameraPose pose{100, 200, 200, 0.6, 0, 0};

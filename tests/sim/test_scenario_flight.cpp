@@ -7,6 +7,7 @@
 #include "sim_test_maps.hpp"
 #include "trn/registry.hpp"
 #include "trn/sim/flight.hpp"
+#include "trn/detail/angles.hpp"
 
 namespace trn::sim {
 namespace {
@@ -84,7 +85,7 @@ TEST(Flight, StreamsFramesWithConsistentTruthAndSensors) {
         EXPECT_NEAR(f.template_scale, template_scale(cfg.camera, 200, 1.0), 1e-12);
         EXPECT_NEAR(f.position_m.x, (f.truth.map_x - first.truth.map_x) * map.metres_per_pixel, 1e-9);
         EXPECT_NEAR(f.position_m.y, -(f.truth.map_y - first.truth.map_y) * map.metres_per_pixel, 1e-9);
-        EXPECT_LE(std::abs(wrap_angle(f.magnetometer_heading_rad - f.truth.yaw_rad)), 2 * 3.14159265 / 180 + 1e-9);
+        EXPECT_LE(std::abs(wrap_angle(f.magnetometer_heading_rad - f.truth.yaw_rad)), 2 * kDeg + 1e-9);
         const Pose pose = f.truth_pose();
         ParticleScore s;
         backend->score(handle, f.image.view(), std::span<const Pose>(&pose, 1), ScoreOptions{}, std::span<ParticleScore>(&s, 1));

@@ -5,11 +5,11 @@
 #include <vector>
 
 #include "trn/sim/sensors.hpp"
+#include "trn/detail/angles.hpp"
 
 namespace trn::sim {
 namespace {
 
-constexpr double kDeg = 3.14159265358979323846 / 180;
 
 // Flies straight north-east at 12 m/s for `seconds` at 50 Hz; returns the final estimate.
 Vec3 fly_straight(const OdometryConfig& cfg, double seconds) {
@@ -62,10 +62,10 @@ TEST(Odometry, TurnsAddHeadingErrorWithTheConfiguredSpread) {
         OdometrySimulator odo(cfg);
         // Two full circles (4 pi rad) at 0.2 rad/s.
         const double dt = 0.02, rate = 0.2;
-        for (int i = 0; i < static_cast<int>(4 * 3.14159265358979 / rate / dt); ++i) odo.step({0.1, 0, 0}, dt, rate);
+        for (int i = 0; i < static_cast<int>(4 * kPi / rate / dt); ++i) odo.step({0.1, 0, 0}, dt, rate);
         sum2 += odo.heading_error_rad() * odo.heading_error_rad();
     }
-    const double expected = 2 * kDeg * std::sqrt(4 * 3.14159265358979);
+    const double expected = 2 * kDeg * std::sqrt(4 * kPi);
     EXPECT_NEAR(std::sqrt(sum2 / runs), expected, 0.12 * expected);
     // No turning: no heading error beyond the bias.
     OdometrySimulator straight(cfg);
@@ -96,8 +96,8 @@ TEST(Magnetometer, NoiseStaysWithinTwoDegreesWithConfiguredSpread) {
 }
 
 TEST(Angles, WrapAngle) {
-    EXPECT_NEAR(wrap_angle(3 * 3.14159265358979), 3.14159265358979, 1e-12);
-    EXPECT_NEAR(wrap_angle(-0.5 - 2 * 3.14159265358979), -0.5, 1e-12);
+    EXPECT_NEAR(wrap_angle(3 * kPi), kPi, 1e-12);
+    EXPECT_NEAR(wrap_angle(-0.5 - 2 * kPi), -0.5, 1e-12);
 }
 
 }  // namespace

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "backend_env.hpp"
+#include "backend_env.hpp"  // the TRN_* variables -> BackendOptions, as the CLI reads them
 #include "test_images.hpp"
 #include "trn/registry.hpp"
 
@@ -31,7 +31,7 @@ inline std::string vulkan_unavailable() {
 
 // The options ctest runs these tests with (TRN_VULKAN_VALIDATION=1: the validation layer on),
 // read the way the CLI reads them; tests change single fields from there.
-inline BackendOptions env_options() { return cli::backend_options_from_environment(); }
+inline BackendOptions env_options() { return test::backend_options_from_environment(); }
 
 // The Vulkan backend with env_options() changed by `change` (which picks its path).
 template <typename Change>

@@ -1,7 +1,8 @@
 #pragma once
 // Settings a backend is created with, passed by value to BackendRegistry::create. The library
 // never reads the environment: the `trnkit` CLI builds these from its TRN_* variables
-// (apps/trnkit/backend_env.cpp, listed in README.md), an embedding program sets them itself.
+// (apps/trnkit/backend_env.cpp, listed in README.md), an embedding program sets them itself or from
+// NAME=VALUE text (trn/backend_option_text.hpp).
 // Defaults are the tuned values; each backend checks its own fields when it is created and throws
 // trn::Error naming the field (e.g. "BackendOptions.vulkan.work_group = 48: ...").
 #include <cstdint>

@@ -23,6 +23,12 @@ struct BackendFamily {
     std::function<std::unique_ptr<Backend>(int index, const BackendOptions& options)> create;
 };
 
+// One candidate of "fastest", timed only when a caller asks (create_fastest with timings).
+struct BackendTiming {
+    std::string name;     // "opencl:0", "cpu", ...
+    double score_ms = 0;  // one batch (a 160x120 template, 1000 particles), after a warm-up batch
+};
+
 struct FamilyStatus {
     std::string family;
     std::string description;
@@ -54,8 +60,11 @@ public:
     // lavapipe on the CPU), and cpu-ref (the slow oracle) only when it is the only one.
     // The device names in that order; pure, so the order is testable.
     static std::vector<std::string> preferred_order(const std::vector<DeviceInfo>& devices);
-    // The first device in preferred_order() that can be created with `options`.
-    std::unique_ptr<Backend> create_fastest(BackendOptions options = {}) const;
+    // The first device in preferred_order() that can be created with `options`. Nothing is timed
+    // unless `timings` is given: then every usable candidate is also created and scores one batch
+    // after a warm-up (for a printout), a candidate that fails it is skipped, and the choice is
+    // still the first usable one in preferred_order(), never the quickest of this run.
+    std::unique_ptr<Backend> create_fastest(BackendOptions options = {}, std::vector<BackendTiming>* timings = nullptr) const;
 
 private:
     std::vector<BackendFamily> families_;

@@ -144,7 +144,6 @@ private:
     std::vector<double> cumulative_;
     std::vector<Pose> poses_;
     std::vector<ParticleScore> scores_, probe_scores_;
-    std::vector<std::uint64_t> bins_;
     Estimate estimate_;
     FilterCounters counters_;
     LockMonitor lock_;

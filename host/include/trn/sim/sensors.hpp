@@ -83,7 +83,5 @@ private:
     double bias_m_ = 0;
 };
 
-double wrap_angle(double rad);  // to (-pi, pi]
-
 }  // namespace trn::sim
 TRN_API_END

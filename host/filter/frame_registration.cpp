@@ -1,9 +1,8 @@
-#include "frame_registration.hpp"
+#include "trn/filter/frame_registration.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <fstream>
-#include <numbers>
 #include <sstream>
 
 #include <opencv2/imgproc.hpp>
@@ -12,11 +11,10 @@
 #include "trn/error.hpp"
 #include "trn/filter/visual_odometry.hpp"
 #include "trn/parse_number.hpp"
+#include "trn/detail/angles.hpp"
 
 namespace trn::reg {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 cv::Mat as_mat(const GrayImage& g) {
     return cv::Mat(g.height, g.width, CV_8UC1, const_cast<std::uint8_t*>(g.pixels.data()));

@@ -14,7 +14,9 @@
 #include "trn/backend.hpp"
 #include "trn/io/image_io.hpp"
 #include "trn/scoring.hpp"
+#include "trn/export.hpp"
 
+TRN_API_BEGIN
 namespace trn::reg {
 
 // p' = [a -b; b a] p + (tx, ty): rotation atan2(b, a), scale hypot(a, b), in image pixels.
@@ -102,3 +104,4 @@ struct PoseRow {
 std::vector<PoseRow> read_pose_rows(const std::string& path);
 
 }  // namespace trn::reg
+TRN_API_END

@@ -3,7 +3,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "fuzz_one.hpp"
+#include "fuzz_power_log_one.hpp"
 
 #ifndef TRN_FUZZ_FORMAT
 #error "define TRN_FUZZ_FORMAT to the parser under test"

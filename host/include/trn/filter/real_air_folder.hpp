@@ -5,9 +5,11 @@
 #include <string>
 #include <vector>
 
-#include "frame_registration.hpp"
+#include "trn/export.hpp"
+#include "trn/filter/frame_registration.hpp"
 #include "trn/sim/sensors.hpp"
 
+TRN_API_BEGIN
 namespace trn::reg {
 
 struct RealAirOptions {
@@ -25,3 +27,4 @@ void write_real_air_folder(const std::string& folder, const std::vector<PoseRow>
                            const RealAirOptions& options);
 
 }  // namespace trn::reg
+TRN_API_END

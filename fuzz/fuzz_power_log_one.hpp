@@ -1,8 +1,8 @@
 #pragma once
 // One fuzz input through a parser and everything downstream of it: a parse may refuse the input
 // with trn::Error, but it must never crash, and what it accepts must integrate to finite joules.
-// Built as a libFuzzer target and as a ctest replay by fuzz/CMakeLists.txt (the marker file has
-// its own entry, fuzz/fuzz_markers.cpp).
+// fuzz_power_log.cpp's check, built as a libFuzzer target and as a ctest replay by
+// fuzz/CMakeLists.txt (the marker file has its own entry, fuzz_markers.cpp).
 #include <cmath>
 #include <string>
 #include <string_view>

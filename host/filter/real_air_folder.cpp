@@ -1,10 +1,11 @@
-#include "real_air_folder.hpp"
+#include "trn/filter/real_air_folder.hpp"
 
 #include <cmath>
 
 #include "trn/error.hpp"
 #include "trn/sim/air_format.hpp"
 #include "trn/sim/camera.hpp"
+#include "trn/detail/angles.hpp"
 
 namespace trn::reg {
 
@@ -51,7 +52,7 @@ void write_real_air_folder(const std::string& folder, const std::vector<PoseRow>
         if (k > 0) {
             const Pose& q = rows[k - 1].pose;
             const sim::Vec3 delta{(p.x - q.x) * mpp, -(p.y - q.y) * mpp, 0};
-            odometry.step(delta, dt, sim::wrap_angle(p.yaw - q.yaw) / dt);
+            odometry.step(delta, dt, wrap_angle(p.yaw - q.yaw) / dt);
         }
         r.svo_m = odometry.estimate();
         writer.write(r, frames[k].view());
