@@ -1,6 +1,7 @@
 #include "trn/backend_option_text.hpp"
 
 #include <cstdint>
+#include <utility>
 
 #include "trn/parse_number.hpp"
 
@@ -83,6 +84,44 @@ void set_backend_option(BackendOptions& options, std::string_view assignment) {
     if (eq == std::string_view::npos || eq == 0)
         throw Error("backend option '" + std::string(assignment) + "': expected NAME=VALUE");
     set_backend_option(options, assignment.substr(0, eq), assignment.substr(eq + 1));
+}
+
+BackendOptions backend_options_from_variables(const VariableLookup& lookup) {
+    auto value_of = [&](const char* name) -> const char* {  // unset and empty both mean "the default"
+        const char* v = lookup(name);
+        return v && *v ? v : nullptr;
+    };
+    BackendOptions o;
+    for (const auto& [variable, option] : {std::pair{"TRN_OPENCL_DEVICE", "default_device.opencl"},
+                                           {"TRN_VULKAN_DEVICE", "default_device.vulkan"},
+                                           {"TRN_CPU_THREADS", "cpu.threads"},
+                                           {"TRN_CPU_SIMD", "cpu.simd"},
+                                           {"TRN_OPENCL_WORK_GROUP", "opencl.work_group"},
+                                           {"TRN_VULKAN_WORKGROUP", "vulkan.work_group"},
+                                           {"TRN_VULKAN_PARTICLES_PER_GROUP", "vulkan.particles_per_group"}}) {
+        const char* v = value_of(variable);
+        if (!v) continue;
+        try {
+            set_backend_option(o, option, v);
+        } catch (const BackendOptionError& e) {
+            throw Error(std::string(variable) + "='" + v + "': " + e.problem());
+        }
+    }
+    // Switches of the test paths: only their one value changes anything.
+    if (const char* v = value_of("TRN_VULKAN_MAP_LAYOUT")) o.vulkan.quad_maps = std::string(v) != "bytes";
+    if (const char* v = value_of("TRN_VULKAN_NO_SUBGROUPS")) o.vulkan.subgroups = std::string(v) != "1";
+    if (const char* v = value_of("TRN_VULKAN_FORCE_STAGING")) o.vulkan.force_staging = std::string(v) == "1";
+    if (const char* v = value_of("TRN_VULKAN_VALIDATION")) o.vulkan.validation = std::string(v) == "1";
+
+    std::string root;  // the per-user cache root: $XDG_CACHE_HOME, else $HOME/.cache
+    if (const char* xdg = value_of("XDG_CACHE_HOME")) root = xdg;
+    else if (const char* home = value_of("HOME")) root = std::string(home) + "/.cache";
+    const char* cl_cache = value_of("TRN_OPENCL_CACHE");
+    if (!root.empty() && !(cl_cache && std::string(cl_cache) == "0")) o.opencl.program_cache_dir = root + "/trnkit/opencl";
+    // Set but empty: no pipeline cache on disk.
+    if (const char* dir = lookup("TRN_VULKAN_PIPELINE_CACHE_DIR")) o.vulkan.pipeline_cache_dir = dir;
+    else if (!root.empty()) o.vulkan.pipeline_cache_dir = root + "/trnkit";
+    return o;
 }
 
 }  // namespace trn

@@ -1,8 +1,8 @@
 #pragma once
 // BackendOptions from text, one field per NAME=VALUE, for a program that takes backend settings
 // from its command line, a configuration file or its environment. The library reads none of those
-// itself: the trnkit CLI maps its TRN_* variables onto these names (apps/trnkit/backend_env.cpp),
-// and the test and benchmark mains do the same (tests/common/backend_env.hpp).
+// itself: backend_options_from_variables maps the TRN_* variables onto these names from values a
+// program looks up (the trnkit CLI, the test and benchmark mains: std::getenv).
 //
 // Names are the fields' paths in BackendOptions; values are checked here, before any backend is
 // created (the backends still check their own ranges, e.g. powers of two, when they are created):
@@ -15,6 +15,7 @@
 //   vulkan.particles_per_group   whole number 1..16
 //   vulkan.quad_maps, vulkan.subgroups, vulkan.force_staging, vulkan.validation   on|off
 //   vulkan.pipeline_cache_dir    a folder; empty: no disk cache
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -51,6 +52,13 @@ const std::vector<BackendOptionName>& backend_option_names();
 void set_backend_option(BackendOptions& options, std::string_view name, std::string_view value);
 // The same from "NAME=VALUE".
 void set_backend_option(BackendOptions& options, std::string_view assignment);
+
+// The TRN_* variables (README.md's table) as BackendOptions, each value looked up through `lookup`
+// (nullptr or "": unset). The library reads no environment itself: a program passes std::getenv
+// (the trnkit CLI, the test and benchmark mains), anything else a table of its own. A refused value
+// throws trn::Error naming the variable ("TRN_CPU_THREADS='abc': ...").
+using VariableLookup = std::function<const char*(const char* name)>;
+BackendOptions backend_options_from_variables(const VariableLookup& lookup);
 
 }  // namespace trn
 TRN_API_END
