@@ -1,5 +1,5 @@
 // Energy integration from Python: the same request the CLI builds from its options, the run
-// report's frames as NumPy arrays.
+// report's frames as NumPy arrays (python/trnkit/_energy.py has the public function).
 #include "py_energy.hpp"
 
 #include <pybind11/numpy.h>
@@ -74,14 +74,9 @@ pyb::dict integrate(const std::string& log, const std::string& markers, const st
 }  // namespace
 
 void register_energy(pyb::module_& m) {
-    m.def("integrate_energy", &integrate, pyb::arg("log"), pyb::arg("markers"), pyb::kw_only(), pyb::arg("format") = "auto",
-          pyb::arg("options") = std::map<std::string, std::string>{}, pyb::arg("align") = "same-clock", pyb::arg("offset") = 0.0,
-          pyb::arg("search") = 0.0, pyb::arg("insist") = false, pyb::arg("clock") = "real", pyb::arg("rule") = "trapezoid",
-          pyb::arg("min_samples") = 3,
-          "Per-frame joules of a power log between the frame markers of `trnkit frames`, as `trnkit energy integrate` "
-          "computes them. Returns a dict of per-frame arrays (id, start_s, end_s, gross_j, net_j, error_j, samples, usable) "
-          "and flag (list), with platform, idle_w, offset_s, drift, align and warnings. options: parser options "
-          "{key: value} (docs/ENERGY.md).");
+    m.def("integrate_energy", &integrate, pyb::arg("log"), pyb::arg("markers"), pyb::arg("format"), pyb::arg("options"),
+          pyb::arg("align"), pyb::arg("offset"), pyb::arg("search"), pyb::arg("insist"), pyb::arg("clock"), pyb::arg("rule"),
+          pyb::arg("min_samples"));
 }
 
 }  // namespace trn::py
