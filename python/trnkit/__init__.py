@@ -20,14 +20,15 @@ import numpy  # noqa: F401  (first: a missing NumPy is named, not "initializatio
 from ._trnkit import (FLAT_PATCH, FLAT_TEMPLATE, SCORE_DTYPE, TOO_FEW_SAMPLES, BackendUnavailable, Error, Map, Plan,
                       Sampling, __version__, git_commit)
 from ._backend import Backend, PhaseTimes, YawUnitWarning, devices, families, plan
-from ._energy import integrate_energy
+from ._energy import MeasurementWindows, PowerSampler, PowerTrace, integrate_energy, power_sources
 
 __all__ = [
-    "Backend", "BackendUnavailable", "Error", "FLAT_PATCH", "FLAT_TEMPLATE", "Map", "PhaseTimes", "Plan", "SCORE_DTYPE",
-    "Sampling", "TOO_FEW_SAMPLES", "YawUnitWarning", "devices", "families", "git_commit", "integrate_energy", "plan",
+    "Backend", "BackendUnavailable", "Error", "FLAT_PATCH", "FLAT_TEMPLATE", "Map", "MeasurementWindows", "PhaseTimes",
+    "Plan", "PowerSampler", "PowerTrace", "SCORE_DTYPE", "Sampling", "TOO_FEW_SAMPLES", "YawUnitWarning", "devices",
+    "families", "git_commit", "integrate_energy", "plan", "power_sources",
 ]
 
 # The compiled classes say they are trnkit's (repr, help, pickling errors), not trnkit._trnkit's.
-for _cls in (Map, Plan, Sampling):
+for _cls in (Map, Plan, Sampling, PowerTrace):
     _cls.__module__ = __name__
 del _cls
