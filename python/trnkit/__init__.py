@@ -28,7 +28,7 @@ __all__ = [
     "families", "git_commit", "integrate_energy", "plan", "power_sources",
 ]
 
-# The compiled classes say they are trnkit's (repr, help, pickling errors), not trnkit._trnkit's.
-for _cls in (Map, Plan, Sampling, PowerTrace):
+# Every public class says it is trnkit's (repr, help, pickle), not trnkit._trnkit's or trnkit._backend's.
+for _cls in (Backend, Map, MeasurementWindows, PhaseTimes, Plan, PowerSampler, PowerTrace, Sampling, YawUnitWarning):
     _cls.__module__ = __name__
 del _cls

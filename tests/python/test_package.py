@@ -38,7 +38,10 @@ def test_is_a_package_with_stubs_and_py_typed():
     for name in ["__init__.pyi", "py.typed"]:
         assert os.path.exists(os.path.join(folder, name)), name
     assert trnkit._trnkit.__file__.startswith(folder)
-    assert trnkit.Map.__module__ == "trnkit" and trnkit.Backend.__module__ == "trnkit._backend"
+    assert trnkit.Map.__module__ == "trnkit" == trnkit.Backend.__module__ == trnkit.PowerSampler.__module__
+    import pickle
+    times = pickle.loads(pickle.dumps(trnkit.PhaseTimes(1.0, 2.0, 3.0)))
+    assert times.total_ms == 6.0 and type(times) is trnkit.PhaseTimes
     assert set(trnkit.__all__) <= set(dir(trnkit))
 
 
