@@ -71,8 +71,9 @@ def test_joules_per_score_call(tmp_path):
     with trnkit.PowerSampler("hwmon:ina226", period_s=0.002, sysfs_root=tmp_path) as sampler:
         assert sampler.running
         windows.idle_for(0.3)
-        for seconds in durations:
+        for i, seconds in enumerate(durations):
             with windows.frame() as frame_id:
+                assert frame_id == i
                 busy_s.append(busy(rail, seconds, lambda: backend.score(m, template, poses)))
             windows.idle_for(0.15)
         windows.idle_for(0.15)
