@@ -19,6 +19,8 @@ packages=(
   clang libclang-rt-14-dev gnuplot-nox python3
   # the Python module (pybind11 + NumPy) and its pytest tests
   python3-dev python3-numpy python3-pybind11 pybind11-dev python3-pytest
+  # `pip install .` / `pip wheel .` of the package without network (setuptools drives CMake; venvs)
+  python3-pip python3-venv python3-setuptools python3-wheel
   # running the studies on a cluster engine (scripts/experiment-*; tests/cluster starts a throwaway
   # single-node Slurm) and checking the scripts
   parallel slurmctld slurmd slurm-client munge shellcheck

@@ -72,6 +72,9 @@ std::vector<Pose> poses_from(const pyb::handle& poses) {
         PyErr_Clear();
         throw pyb::type_error("poses must be an array-like of shape (N, 4): x, y, yaw, scale");
     }
+    if (a.ndim() == 1 && a.shape(0) == 4)
+        throw pyb::value_error("poses has shape (4,), a single pose: pass shape (1, 4), e.g. [pose] or pose[None] "
+                               "(rows x, y, yaw, scale)");
     if (a.ndim() != 2 || a.shape(1) != 4)
         throw pyb::value_error("poses must have shape (N, 4): x, y, yaw, scale; got shape " + shape_text(a));
     std::vector<Pose> out(static_cast<std::size_t>(a.shape(0)));

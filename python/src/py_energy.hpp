@@ -1,5 +1,5 @@
 #pragma once
-// trnkit.integrate_energy: `trnkit energy integrate` as a function returning per-frame arrays.
+// Live power sources, measurement windows and integrate_energy (python/trnkit/_energy.py wraps them).
 #include <pybind11/pybind11.h>
 
 namespace trn::py {

@@ -250,7 +250,7 @@ pyb::dict localize_flight(const std::string& dataset, const std::string& map, co
 
 void register_localize(pyb::module_& m) {
     using namespace pyb::literals;
-    pyb::class_<PyLocalizer, std::shared_ptr<PyLocalizer>>(m, "Localizer", R"(The online DPC-PFL localizer (trn::localize::Localizer).
+    pyb::class_<PyLocalizer, std::shared_ptr<PyLocalizer>>(m, "_Localizer", R"(The online DPC-PFL localizer (trn::localize::Localizer).
 
 Built once from the map (a 2-D uint8 array, grey), its resolution and a backend; stepped once per
 camera frame. Conventions: map pixels (x east, y south, pixel centres at integers); yaw and
@@ -295,7 +295,7 @@ score_ms, step_ms.)")
         .def("__exit__", [](PyLocalizer& l, const pyb::args&) { l.impl.reset(), l.backend.reset(); });
 
     m.def(
-        "load_gray",
+        "_load_gray",
         [](const std::string& path) {
             const GrayImage image = load_gray(path);
             pyb::array_t<std::uint8_t> a({image.height, image.width});
@@ -304,13 +304,13 @@ score_ms, step_ms.)")
         },
         "path"_a, "An image file (PNG, JPEG, TIFF ...) as a 2-D uint8 array, grey.");
 
-    m.def("read_air_folder", &read_air_folder, "folder"_a,
+    m.def("_read_air_folder", &read_air_folder, "folder"_a,
           R"(The rows of an AIR flight folder (metadata.csv + frames) as a robot's sensors would feed a Localizer:
 a list of dicts with row, filename, image_error, truth ((x, y) map pixels or None) and step: the
 keyword arguments of Localizer.step (frame as taken, odometry since the previous row, heading_rad,
 altitude_agl_m, attitude).)");
 
-    m.def("localize", &localize_flight, pyb::kw_only(), "dataset"_a, "map"_a = "", "backend"_a = "cpu", "metres_per_pixel"_a = 0.0,
+    m.def("_localize", &localize_flight, pyb::kw_only(), "dataset"_a, "map"_a = "", "backend"_a = "cpu", "metres_per_pixel"_a = 0.0,
           "hfov_deg"_a = 0.0, "fps"_a = 0.0, "rate_hz"_a = 5.0, "start"_a = pyb::none(), "start_heading_rad"_a = pyb::none(),
           "odometry"_a = "recorded", "max_tilt_deg"_a = 10.0, "template_width"_a = 160, "sparse"_a = 1.0, "seed"_a = 1,
           "conversion"_a = "logistic:0.2", "sampling"_a = "kld", "min_particles"_a = 100, "max_particles"_a = 2000, "particles"_a = 1000,

@@ -1,0 +1,113 @@
+"""Localization from Python: the online DPC-PFL Localizer (trn::localize::Localizer), the rows of a
+recorded AIR folder as a robot's sensors would feed it, and a whole flight at once.
+
+Conventions: positions in map pixels (x east = column, y south = row, pixel centres at integers);
+yaw and headings in RADIANS, clockwise from north; odometry in metres east/north since the previous
+step; altitudes in metres above the ground. Same inputs and seed: the estimates of `trnkit localize`,
+bit for bit."""
+import math
+import warnings
+
+from . import _trnkit
+from ._backend import YawUnitWarning
+
+__all__ = ["Localizer", "load_gray", "localize", "read_air_folder"]
+
+
+class Localizer:
+    """The online DPC-PFL localizer, built once and stepped once per camera frame.
+
+    map: 2-D uint8 array (grey orthophoto); metres_per_pixel: its resolution; backend: "cpu-ref",
+    "cpu", "opencl[:N]", "vulkan[:N]" (never a silent fallback).
+    start: (x, y) map pixels, the last known position (required). start_heading_rad: centre of the
+    initial headings in RADIANS (None: the first step's heading). camera_hfov_deg: the camera's
+    horizontal field of view in degrees, needed when steps give altitude_agl_m or attitude.
+    max_tilt_deg: frames tilted further from nadir are not scored. template_width: frames are
+    downscaled to this width before scoring (0: full). sparse: share of template pixels scored.
+    seed: same seed, same run. conversion ("logistic:0.2", "linear", "softmax", "rectifying:D"),
+    sampling ("kld", "importance", "rejection"), min_particles / max_particles (KLD bounds; the
+    initial set is max_particles), particles (fixed count of importance / rejection sampling),
+    init_radius_m (initial particles uniform within this radius of start), reinit_radius_m (after a
+    collapse): the filter's settings (trn/filter/particle_filter.hpp).
+
+    Use it in a `with` block or call close() to release the map and the backend."""
+
+    def __init__(self, map, metres_per_pixel, backend="cpu", *, start, start_heading_rad=None, camera_hfov_deg=None,
+                 max_tilt_deg=10.0, template_width=160, sparse=1.0, seed=1, conversion="logistic:0.2", sampling="kld",
+                 min_particles=100, max_particles=2000, particles=1000, init_radius_m=300.0, reinit_radius_m=300.0):
+        if start_heading_rad is not None and abs(start_heading_rad) > 2 * math.pi:
+            warnings.warn(f"start_heading_rad={start_heading_rad} is beyond 2 pi: degrees? (math.radians converts)", YawUnitWarning,
+                          stacklevel=2)
+        self._impl = _trnkit._Localizer(
+            map, metres_per_pixel, backend, start=tuple(start), start_heading_rad=start_heading_rad, camera_hfov_deg=camera_hfov_deg,
+            max_tilt_deg=max_tilt_deg, template_width=template_width, sparse=sparse, seed=seed, conversion=conversion,
+            sampling=sampling, min_particles=min_particles, max_particles=max_particles, particles=particles,
+            init_radius_m=init_radius_m, reinit_radius_m=reinit_radius_m)
+
+    def step(self, frame=None, *, odometry=None, heading_rad=None, altitude_agl_m=None, scale=None, attitude=None):
+        """One camera frame and what the other sensors said since the previous step.
+
+        frame: 2-D uint8 array, grey, as taken (None: no frame this step; the particles are moved,
+        not scored). odometry: (east_m, north_m) displacement since the previous step, metres (None:
+        lost). heading_rad: compass heading in RADIANS, clockwise from north (None: none). The frame's
+        scale: altitude_agl_m (metres above the ground, with camera_hfov_deg) or scale (map pixels
+        per frame pixel). attitude: (roll_rad, pitch_rad) in RADIANS: a tilted frame is warped to
+        nadir; beyond max_tilt_deg it is not scored (too_oblique).
+
+        Returns a dict: x, y, yaw (map pixels, radians), best_x, best_y, best_yaw, best_ncc (the
+        best particle), spread_m, particles, off_map, frame_missing, too_oblique, tilt_deg (degrees),
+        odometry_lost, reinitialised, lock_state ("none", "ok", "weak", "inconsistent", "fix",
+        "lost"), lock_contrast, lock_drift_m, score_ms, step_ms (milliseconds)."""
+        if heading_rad is not None and abs(heading_rad) > 2 * math.pi:
+            warnings.warn(f"heading_rad={heading_rad} is beyond 2 pi: degrees? (math.radians converts)", YawUnitWarning, stacklevel=2)
+        return self._impl.step(frame, odometry=odometry, heading_rad=heading_rad, altitude_agl_m=altitude_agl_m, scale=scale,
+                               attitude=attitude)
+
+    def close(self):
+        """Releases the map and the backend now; a later step raises ValueError."""
+        self._impl.close()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+
+def load_gray(path):
+    """An image file (PNG, JPEG, TIFF ...) as a 2-D uint8 array, grey (trnkit.Error naming the file otherwise)."""
+    return _trnkit._load_gray(path)
+
+
+def read_air_folder(folder):
+    """The rows of an AIR flight folder (metadata.csv + frames) as a robot's sensors would feed a Localizer.
+
+    A list of dicts: row (0-based), filename, image_error ("" when the frame loaded), truth ((x, y)
+    map pixels, or None) and step: the keyword arguments of Localizer.step for that row (frame as
+    taken, odometry since the previous row in metres, heading_rad, altitude_agl_m, attitude in
+    radians), so `loc.step(**row["step"])` feeds it."""
+    return _trnkit._read_air_folder(folder)
+
+
+def localize(*, dataset, map="", backend="cpu", metres_per_pixel=0.0, hfov_deg=0.0, fps=0.0, rate_hz=5.0, start=None,
+             start_heading_rad=None, odometry="recorded", max_tilt_deg=10.0, template_width=160, sparse=1.0, seed=1,
+             conversion="logistic:0.2", sampling="kld", min_particles=100, max_particles=2000, particles=1000, init_radius_m=50.0,
+             reinit_radius_m=300.0, out="", plots=False):
+    """Localizes a whole AIR folder as `trnkit localize` does (same defaults: a 50 m start prior).
+
+    dataset: the AIR folder; map: the map image (default: the one flight.json names);
+    metres_per_pixel, hfov_deg (degrees), fps: when flight.json does not say them (0: not given);
+    rate_hz: filter steps per second; start: (x, y) map pixels (None: the first row's ground truth);
+    start_heading_rad: RADIANS (None: the first heading); odometry: "recorded" (the folder's
+    SvoX/SvoY) or "visual" (from the frames); out: a folder for localization.csv and summary.json
+    ("" none; plots=True adds the gnuplot plots). The other keywords are Localizer's.
+
+    Returns {"rows": dict of NumPy columns (frame, time_s, distance_m, truth_x, truth_y, odometry_x,
+    odometry_y, estimate_x, estimate_y, estimate_yaw, error_m, odometry_error_m, particles,
+    score_ms, estimate_lat, estimate_lon), "summary": summary.json's numbers, "backend",
+    "metres_per_pixel", "start"}. Errors name the keyword (ValueError "dataset: ...")."""
+    return _trnkit._localize(dataset=dataset, map=map, backend=backend, metres_per_pixel=metres_per_pixel, hfov_deg=hfov_deg, fps=fps,
+                             rate_hz=rate_hz, start=None if start is None else tuple(start), start_heading_rad=start_heading_rad,
+                             odometry=odometry, max_tilt_deg=max_tilt_deg, template_width=template_width, sparse=sparse, seed=seed,
+                             conversion=conversion, sampling=sampling, min_particles=min_particles, max_particles=max_particles,
+                             particles=particles, init_radius_m=init_radius_m, reinit_radius_m=reinit_radius_m, out=out, plots=plots)
