@@ -6,6 +6,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -47,7 +48,9 @@ protected:
     }
     void SetUp() override {
         if (!std::filesystem::exists(base() + "/metadata.csv")) GTEST_SKIP() << "TRN_SHARED_DATA/realflight not found: real flight unavailable";
-        dir_ = testing::TempDir() + "/real_air_" + testing::UnitTest::GetInstance()->current_test_info()->name() + "_" + std::to_string(::getpid());
+        std::string name = testing::UnitTest::GetInstance()->current_test_info()->name();
+        std::replace(name.begin(), name.end(), '/', '_');  // a parameterised test's name has a slash
+        dir_ = testing::TempDir() + "/real_air_" + name + "_" + std::to_string(::getpid());
         std::filesystem::remove_all(dir_);
         std::filesystem::copy(base(), dir_, std::filesystem::copy_options::recursive);
     }
