@@ -126,13 +126,16 @@ pyb::object upload_map(const std::shared_ptr<PyBackend>& self, const pyb::handle
     return pyb::cast(out);
 }
 
-// Releases the maps' device memory, then the backend; idempotent.
+// Releases the localizers' and the maps' device memory, then the backend; idempotent.
 void close(PyBackend& self) {
     std::vector<MapHandle> released;  // destroyed after the lock, with the GIL released
     std::unique_ptr<Backend> impl;
     pyb::gil_scoped_release nogil;
     {
         std::lock_guard lock(self.mutex);
+        for (const auto& weak : self.users)
+            if (auto u = weak.lock()) u->release_device();
+        self.users.clear();
         for (const auto& weak : self.maps)
             if (auto m = weak.lock()) released.push_back(std::move(m->handle));
         self.maps.clear();

@@ -15,6 +15,7 @@
 #include <utility>
 
 #include "py_arrays.hpp"
+#include "py_backend.hpp"
 #include "trn/field_error.hpp"
 #include "trn/io/image_io.hpp"
 #include "trn/localize/air_frames.hpp"
@@ -47,10 +48,11 @@ auto naming_keywords(Body&& body) {
     }
 }
 
-struct PyLocalizer {
-    std::unique_ptr<Backend> backend;  // declared first: released after the localizer
-    std::unique_ptr<localize::Localizer> impl;
-    std::mutex mutex;
+// Uses its backend under the backend's mutex; the backend's close() releases it (its map on the device).
+struct PyLocalizer : BackendUser {
+    std::shared_ptr<PyBackend> backend;        // declared first: released after the localizer
+    std::unique_ptr<localize::Localizer> impl;  // guarded by backend->mutex; null once closed
+    void release_device() override { impl.reset(); }
 };
 
 localize::LocalizerConfig make_config(std::optional<std::pair<double, double>> start, std::optional<double> start_heading_rad,
@@ -100,7 +102,6 @@ pyb::dict estimate_dict(const localize::Estimate& e) {
 pyb::dict step(PyLocalizer& l, const pyb::object& frame, std::optional<std::pair<double, double>> odometry,
                std::optional<double> heading_rad, std::optional<double> altitude_agl_m, std::optional<double> scale,
                std::optional<std::pair<double, double>> attitude) {
-    if (!l.impl) throw pyb::value_error("Localizer: closed");
     localize::Observation o;
     BorrowedGray image;
     if (!frame.is_none()) {
@@ -117,7 +118,8 @@ pyb::dict step(PyLocalizer& l, const pyb::object& frame, std::optional<std::pair
     localize::Estimate e;
     {
         pyb::gil_scoped_release release;
-        std::lock_guard<std::mutex> lock(l.mutex);
+        std::lock_guard<std::mutex> lock(l.backend->mutex);
+        if (!l.impl) throw pyb::value_error("Localizer: closed (or its backend was closed)");
         e = l.impl->step(o);
     }
     return estimate_dict(e);
@@ -256,7 +258,7 @@ Built once from the map (a 2-D uint8 array, grey), its resolution and a backend;
 camera frame. Conventions: map pixels (x east, y south, pixel centres at integers); yaw and
 headings in RADIANS, clockwise from north; odometry in metres east/north since the previous step.
 Same inputs, same seed: the same estimates as `trnkit localize`, bit for bit.)")
-        .def(pyb::init([](const pyb::object& map, double metres_per_pixel, const std::string& backend, std::pair<double, double> start,
+        .def(pyb::init([](const pyb::object& map, double metres_per_pixel, std::shared_ptr<PyBackend> backend, std::pair<double, double> start,
                           std::optional<double> start_heading_rad, std::optional<double> camera_hfov_deg, double max_tilt_deg,
                           int template_width, double sparse, std::uint64_t seed, const std::string& conversion, const std::string& sampling,
                           std::size_t min_particles, std::size_t max_particles, std::size_t particles, double init_radius_m,
@@ -266,18 +268,25 @@ Same inputs, same seed: the same estimates as `trnkit localize`, bit for bit.)")
                      make_config(start, start_heading_rad, camera_hfov_deg, max_tilt_deg, template_width, sparse, seed, conversion, sampling,
                                  min_particles, max_particles, particles, init_radius_m, reinit_radius_m);
                  const BorrowedGray view = gray_view(map, "map");
-                 l->backend = default_registry().create(backend);
+                 if (!backend) throw pyb::type_error("backend: a trnkit.Backend");
+                 l->backend = backend;
+                 pyb::gil_scoped_release release;  // the map upload
+                 std::lock_guard<std::mutex> lock(backend->mutex);
+                 Backend& b = backend->open_backend();
                  naming_keywords([&] {
-                     l->impl = std::make_unique<localize::Localizer>(view.view, metres_per_pixel, *l->backend, c);
+                     l->impl = std::make_unique<localize::Localizer>(view.view, metres_per_pixel, b, c);
                      return 0;
                  });
+                 std::erase_if(backend->users, [](const std::weak_ptr<BackendUser>& u) { return u.expired(); });
+                 backend->users.push_back(l);
                  return l;
              }),
-             "map"_a, "metres_per_pixel"_a, "backend"_a = "cpu", pyb::kw_only(), "start"_a, "start_heading_rad"_a = pyb::none(),
+             "map"_a, "metres_per_pixel"_a, "backend"_a, pyb::kw_only(), "start"_a, "start_heading_rad"_a = pyb::none(),
              "camera_hfov_deg"_a = pyb::none(), "max_tilt_deg"_a = 10.0, "template_width"_a = 160, "sparse"_a = 1.0, "seed"_a = 1,
              "conversion"_a = "logistic:0.2", "sampling"_a = "kld", "min_particles"_a = 100, "max_particles"_a = 2000, "particles"_a = 1000,
              "init_radius_m"_a = 300.0, "reinit_radius_m"_a = 300.0,
-             R"(map: 2-D uint8 array; metres_per_pixel: its resolution; backend: "cpu-ref", "cpu", "opencl[:N]", "vulkan[:N]".
+             R"(map: 2-D uint8 array; metres_per_pixel: its resolution; backend: a trnkit.Backend (python/trnkit/_localize.py
+also takes a spec string and then owns the backend).
 start: (x, y) map pixels, the last known position. start_heading_rad: centre of the initial headings
 (None: the first step's heading). camera_hfov_deg: horizontal field of view, needed when steps give
 altitude_agl_m or attitude. The rest are the filter's settings (trn/filter/particle_filter.hpp).)")
@@ -290,9 +299,14 @@ pitch_rad) or None (a tilted frame is warped to nadir, beyond max_tilt_deg not s
 Returns a dict: x, y, yaw (radians), best_*, spread_m, particles, off_map, frame_missing,
 too_oblique, tilt_deg, odometry_lost, reinitialised, lock_state, lock_contrast, lock_drift_m,
 score_ms, step_ms.)")
-        .def("close", [](PyLocalizer& l) { l.impl.reset(), l.backend.reset(); }, "Releases the map and the backend now.")
-        .def("__enter__", [](std::shared_ptr<PyLocalizer> l) { return l; })
-        .def("__exit__", [](PyLocalizer& l, const pyb::args&) { l.impl.reset(), l.backend.reset(); });
+        .def(
+            "close",
+            [](PyLocalizer& l) {
+                pyb::gil_scoped_release release;
+                std::lock_guard<std::mutex> lock(l.backend->mutex);
+                l.impl.reset();
+            },
+            "Releases the map on the device now (the backend stays open).");
 
     m.def(
         "_load_gray",

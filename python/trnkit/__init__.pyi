@@ -154,7 +154,7 @@ def integrate_energy(log: str | os.PathLike[str] | PowerTrace, markers: str | os
 Estimate = dict[str, Any]  # x, y, yaw, best_*, spread_m, particles, off_map, frame_missing, ..., step_ms
 
 class Localizer(AbstractContextManager["Localizer"]):
-    def __init__(self, map: npt.NDArray[np.uint8], metres_per_pixel: float, backend: str = "cpu", *, start: tuple[float, float],
+    def __init__(self, map: npt.NDArray[np.uint8], metres_per_pixel: float, backend: Backend | str = "cpu", *, start: tuple[float, float],
                  start_heading_rad: float | None = None, camera_hfov_deg: float | None = None, max_tilt_deg: float = 10.0,
                  template_width: int = 160, sparse: float = 1.0, seed: int = 1, conversion: str = "logistic:0.2",
                  sampling: Literal["kld", "importance", "rejection"] = "kld", min_particles: int = 100, max_particles: int = 2000,

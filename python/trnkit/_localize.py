@@ -9,7 +9,7 @@ import math
 import warnings
 
 from . import _trnkit
-from ._backend import YawUnitWarning
+from ._backend import Backend, YawUnitWarning
 
 __all__ = ["Localizer", "load_gray", "localize", "read_air_folder"]
 
@@ -17,8 +17,9 @@ __all__ = ["Localizer", "load_gray", "localize", "read_air_folder"]
 class Localizer:
     """The online DPC-PFL localizer, built once and stepped once per camera frame.
 
-    map: 2-D uint8 array (grey orthophoto); metres_per_pixel: its resolution; backend: "cpu-ref",
-    "cpu", "opencl[:N]", "vulkan[:N]" (never a silent fallback).
+    map: 2-D uint8 array (grey orthophoto); metres_per_pixel: its resolution; backend: a
+    trnkit.Backend (its keywords, e.g. threads=, cache_dir=, apply) or a spec string "cpu-ref", "cpu",
+    "opencl[:N]", "vulkan[:N]" (a backend made and owned by the localizer; never a silent fallback).
     start: (x, y) map pixels, the last known position (required). start_heading_rad: centre of the
     initial headings in RADIANS (None: the first step's heading). camera_hfov_deg: the camera's
     horizontal field of view in degrees, needed when steps give altitude_agl_m or attitude.
@@ -38,6 +39,9 @@ class Localizer:
         if start_heading_rad is not None and abs(start_heading_rad) > 2 * math.pi:
             warnings.warn(f"start_heading_rad={start_heading_rad} is beyond 2 pi: degrees? (math.radians converts)", YawUnitWarning,
                           stacklevel=2)
+        self._own_backend = None  # a backend made here from a spec string, closed with the localizer
+        if isinstance(backend, str):
+            backend = self._own_backend = Backend(backend)
         self._impl = _trnkit._Localizer(
             map, metres_per_pixel, backend, start=tuple(start), start_heading_rad=start_heading_rad, camera_hfov_deg=camera_hfov_deg,
             max_tilt_deg=max_tilt_deg, template_width=template_width, sparse=sparse, seed=seed, conversion=conversion,
@@ -64,8 +68,11 @@ class Localizer:
                                attitude=attitude)
 
     def close(self):
-        """Releases the map and the backend now; a later step raises ValueError."""
+        """Releases the map on the device now (and the backend when it was made from a spec string); a
+        later step raises ValueError. Closing the backend also releases every localizer built on it."""
         self._impl.close()
+        if self._own_backend is not None:
+            self._own_backend.close()
 
     def __enter__(self):
         return self
