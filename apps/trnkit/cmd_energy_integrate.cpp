@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "field_flags.hpp"
 #include "options.hpp"
 #include "write_text.hpp"
 #include "trn/energy/plots.hpp"
@@ -78,7 +79,7 @@ void add_energy_integrate_command(CLI::App* energy) {
                      100 * r.shift.relative_plus);
         if (r.align_mode == "auto") std::fprintf(stderr, "  alignment confidence: %s\n", r.alignment.confidence.c_str());
         // Warnings quote input text: control characters escaped, so a log or marker file cannot drive the terminal.
-        for (const auto& w : r.warnings) std::fprintf(stderr, "  warning: %s\n", io::quote_input(w, 1000).c_str());
+        for (const auto& w : r.warnings) std::fprintf(stderr, "  warning: %s\n", io::quote_input(flags_in(w), 1000).c_str());
         if (!a->plot.empty()) {
             const auto trace = energy::read_power_log(a->log, a->format, opts);
             energy::plot_power_trace(trace, r, a->plot);

@@ -24,7 +24,6 @@
 #include "trn/localize/report_folder.hpp"
 #include "trn/sim/map.hpp"
 #include "trn/detail/angles.hpp"
-#include "trn/field_error.hpp"
 
 namespace trn::cli {
 namespace {
@@ -75,7 +74,7 @@ CLI::Validator pair_in(double lo1, double hi1, double lo2, double hi2, const std
 
 void progress_bar(std::size_t done, std::size_t total) { draw_progress(done, total, "steps"); }
 
-void localize_run(const LocalizeArgs& a) {
+void localize(const LocalizeArgs& a) {
     if (a.min_particles > a.max_particles)
         throw Error("--min-particles " + std::to_string(a.min_particles) + " exceeds --max-particles " + std::to_string(a.max_particles));
     if (!a.start.empty() && !a.start_latlon.empty()) throw Error("--start and --start-latlon: give one of them, not both");
@@ -169,15 +168,6 @@ void localize_run(const LocalizeArgs& a) {
         report.after_summary = "final estimate: " + std::string(ll) + " (" + in.georeference + ")\n";
     }
     localize::write_localization_report(result, out, map.image.view(), mpp, report, std::cout);
-}
-
-// Library errors name the spec's fields; here they name localize's flags.
-void localize(const LocalizeArgs& a) {
-    try {
-        localize_run(a);
-    } catch (const FieldError& e) {
-        throw Error(with_flags(e));
-    }
 }
 
 }  // namespace

@@ -6,7 +6,8 @@
 namespace trn::cli {
 namespace {
 
-constexpr std::array<std::pair<const char*, const char*>, 15> kFlags{{
+// One table for every command: a field has one flag wherever it appears.
+constexpr std::array<std::pair<const char*, const char*>, 28> kFlags{{
     {"dataset", "--dataset"},
     {"flight.folder", "--dataset"},
     {"map", "--map"},
@@ -22,6 +23,21 @@ constexpr std::array<std::pair<const char*, const char*>, 15> kFlags{{
     {"start_heading_rad", "--start-heading-deg"},
     {"init_radius_m", "--init-radius-m"},
     {"reinit_radius_m", "--reinit-radius-m"},
+    // energy integrate / compare (trnkit::energy's run report and its hints)
+    {"utc_offset", "--utc-offset"},
+    {"timezone", "--timezone"},
+    {"offset", "--offset"},
+    {"clock", "--clock"},
+    {"align", "--align"},
+    {"search", "--search"},
+    {"insist", "--insist"},
+    {"sync_unit_ms", "--sync-unit-ms"},
+    // experiment (trnkit::experiments' runner)
+    {"shard", "--shard"},
+    {"job", "--job"},
+    {"backend", "--backend"},
+    {"list_jobs", "--list-jobs"},
+    {"out", "--out"},
 }};
 
 }  // namespace
@@ -36,7 +52,11 @@ std::string flags_in(std::string text) {
     for (std::size_t open = text.find('`'); open != std::string::npos; open = text.find('`', open + 1)) {
         const std::size_t close = text.find('`', open + 1);
         if (close == std::string::npos) break;
-        const std::string flag = flag_of(text.substr(open + 1, close - open - 1));
+        const std::string field = text.substr(open + 1, close - open - 1), flag = flag_of(field);
+        if (flag == field) {  // not a field (a quoted command, say): left as it is
+            open = close;
+            continue;
+        }
         text.replace(open, close - open + 1, flag);
         open += flag.size() - 1;
     }

@@ -12,6 +12,7 @@
 #include <system_error>
 
 #include "commands.hpp"
+#include "field_flags.hpp"
 #include "trn/io/input_file.hpp"
 #include "trn/build_info.hpp"
 #include "trn/error.hpp"
@@ -29,7 +30,7 @@ int run(int argc, char** argv) {
     CLI::App app{"trnkit: terrain-relative navigation kit (particle-filter map matching, Sobel, energy)"};
     app.require_subcommand(1);
     app.failure_message([](const CLI::App*, const CLI::Error& e) {
-        return "trnkit: error: " + one_line(e.what()) + " (see --help)\n";
+        return "trnkit: error: " + one_line(trn::cli::flags_in(e.what())) + " (see --help)\n";  // a library check inside an option's
     });
     const trn::BuildInfo& build = trn::build_info();
     app.set_version_flag("--version", "trnkit " + std::string(build.version) + " (commit " + std::string(build.git_commit) + ")",
@@ -49,8 +50,11 @@ int run(int argc, char** argv) {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
         return app.exit(e);
+    } catch (const trn::FieldError& e) {  // a library spec's field: named by its flag here
+        std::cerr << "trnkit: error: " << one_line(trn::cli::with_flags(e)) << "\n";
+        return 1;
     } catch (const trn::Error& e) {
-        std::cerr << "trnkit: error: " << one_line(e.what()) << "\n";
+        std::cerr << "trnkit: error: " << one_line(trn::cli::flags_in(e.what())) << "\n";
         return 1;
     } catch (const std::filesystem::filesystem_error& e) {  // an errno from a path (EACCES, ENAMETOOLONG ...): bad input
         std::cerr << "trnkit: error: " << one_line(e.path1().empty() ? std::string() : e.path1().string().substr(0, 512) + ": ")

@@ -70,14 +70,14 @@ void refuse_no_frame_inside(const PowerTrace& trace, const RunEnergy& run, Align
                     const int minutes = k * 15;
                     std::snprintf(why, sizeof why,
                                   "%s: none of the frames lies inside the log (%s), but all would if the log's stamps were read %d h %02d min %s: "
-                                  "they look like local time; pass --utc-offset %c%02d:%02d (or --timezone NAME)",
+                                  "they look like local time; pass `utc_offset` %c%02d:%02d (or `timezone` NAME)",
                                   trace.source.c_str(), span, minutes / 60, minutes % 60, sign > 0 ? "earlier" : "later", sign > 0 ? '+' : '-',
                                   minutes / 60, minutes % 60);
                     throw Error(why);
                 }
             }
     throw Error(trace.source + ": none of the frames lies inside the log (" + span +
-                "): another run's log, a wrong --offset, or a clock mismatch (--clock, --align auto)");
+                "): another run's log, a wrong `offset`, or a clock mismatch (`clock`, `align` auto)");
 }
 
 }  // namespace
@@ -115,7 +115,7 @@ RunReport integrate_run(const PowerTrace& trace, const MarkerFile& markers, cons
             r.alignment = align_auto(trace, markers, ao);
             if (r.alignment.ambiguous && !q.insist)
                 throw Error(trace.source + ": automatic alignment is ambiguous (" + r.alignment.confidence +
-                            "): narrow the search with --offset/--search, record a sync pattern (trnkit frames --sync-unit-ms), or pass --insist to accept it");
+                            "): narrow the search with `offset`/`search`, record a sync pattern (trnkit frames `sync_unit_ms`), or pass `insist` to accept it");
             mapping = r.alignment.mapping;
             break;
         }
@@ -126,7 +126,7 @@ RunReport integrate_run(const PowerTrace& trace, const MarkerFile& markers, cons
     r.shift = shift_sensitivity(trace, markers, mapping, q.integration);
     r.idle_w = run.idle_w, r.idle_first_w = run.idle_first_w, r.idle_last_w = run.idle_last_w, r.idle_segments = run.idle_segments;
     r.warnings = trace.warnings;  // implausible readings dropped by the parser
-    if (r.alignment.ambiguous) r.warnings.push_back("AMBIGUOUS automatic alignment accepted with --insist: " + r.alignment.confidence);
+    if (r.alignment.ambiguous) r.warnings.push_back("AMBIGUOUS automatic alignment accepted with `insist`: " + r.alignment.confidence);
     r.warnings.insert(r.warnings.end(), run.warnings.begin(), run.warnings.end());
     std::map<int, const FrameMarker*> by_id;
     for (const auto& m : markers.rows)

@@ -49,7 +49,7 @@ Shard parse_shard(const std::string& text) {
     const auto i = parse_whole_number(std::string_view(text).substr(0, slash));
     const auto n = slash == std::string::npos ? std::nullopt : parse_whole_number(std::string_view(text).substr(slash + 1));
     if (!i || !n || *n == 0 || *i == 0 || *i > *n || *n > kMaxShards)
-        throw Error("experiment: --shard '" + text + "' must be i/n with 1 <= i <= n <= " + std::to_string(kMaxShards));
+        throw Error("experiment: `shard` '" + text + "' must be i/n with 1 <= i <= n <= " + std::to_string(kMaxShards));
     return {static_cast<std::size_t>(*i - 1), static_cast<std::size_t>(*n)};
 }
 
@@ -110,12 +110,12 @@ void check_backend_spec(const std::string& spec) {
     std::string known;
     bool found = false;
     for (const BackendFamily& f : default_registry().families()) known += (known.empty() ? "" : ", ") + f.name, found |= f.name == family;
-    if (!found) throw Error("experiment: --backend '" + io::quote_input(spec) + "': unknown backend (one of fastest, " + known + ")");
+    if (!found) throw Error("experiment: `backend` '" + io::quote_input(spec) + "': unknown backend (one of fastest, " + known + ")");
     if (colon == std::string::npos) return;
     const std::string selector = spec.substr(colon + 1);
     if (selector.empty() || selector.size() > 64 ||
         selector.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789 ._-") != std::string::npos)
-        throw Error("experiment: --backend '" + io::quote_input(spec) + "': after '" + family +
+        throw Error("experiment: `backend` '" + io::quote_input(spec) + "': after '" + family +
                     ":' comes a device index or name text (letters, digits, space . _ -)");
 }
 
@@ -131,9 +131,9 @@ std::size_t run_experiment(const ExperimentOptions& o) {
     config["backend"] = o.backend;
     if (!std::isnan(o.init_radius_m)) {  // part of the configuration: jobs of another radius are refused, not mixed
         if (!config.contains("init_radius_m"))
-            throw Error("experiment " + o.study + ": --init-radius-m: this study has no start radius (only conversion, robustness, odometry, odometry-wind)");
+            throw Error("experiment " + o.study + ": `init_radius_m`: this study has no start radius (only conversion, robustness, odometry, odometry-wind)");
         if (!(o.init_radius_m > 0 && o.init_radius_m <= 1e5))
-            throw Error("experiment: --init-radius-m " + std::to_string(o.init_radius_m) + " must be in (0, 100000]");
+            throw Error("experiment: `init_radius_m` " + std::to_string(o.init_radius_m) + " must be in (0, 100000]");
         config["init_radius_m"] = o.init_radius_m;
     }
     const std::vector<Json> jobs = study->jobs(config);
@@ -151,7 +151,7 @@ std::size_t run_experiment(const ExperimentOptions& o) {
         std::cout << command_prefix(o, out) << " --merge\n";
         return jobs.size();
     }
-    if (!o.job.empty() && !ids.count(o.job)) throw Error("experiment: --job " + o.job + ": no such job in " + o.study + " (see --list-jobs)");
+    if (!o.job.empty() && !ids.count(o.job)) throw Error("experiment: `job` " + o.job + ": no such job in " + o.study + " (see `list_jobs`)");
     const Shard shard = parse_shard(o.shard);  // checked before the output folder is touched
 
     // Every option checked: now the folder (this study's earlier output resumes; others are refused).
@@ -168,7 +168,7 @@ std::size_t run_experiment(const ExperimentOptions& o) {
         const Json done = read_json(path);
         if (done.at("config") != config)
             throw Error("experiment: " + path + " was made with another configuration (" + done.at("config").dump() + ", asked for " +
-                        config.dump() + "); use another --out or delete it");
+                        config.dump() + "); use another `out` or delete it");
         return true;
     };
 

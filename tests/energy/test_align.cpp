@@ -136,7 +136,7 @@ TEST(Align, PeriodicRunWithoutSyncIsAmbiguous) {
         ADD_FAILURE() << "an ambiguous alignment was accepted";
     } catch (const trn::Error& e) {
         EXPECT_NE(std::string(e.what()).find("ambiguous"), std::string::npos) << e.what();
-        EXPECT_NE(std::string(e.what()).find("--insist"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("`insist`"), std::string::npos) << e.what();  // the CLI names it --insist
     }
     q.insist = true;
     const RunReport r = integrate_run(tr, bare.markers, q);
