@@ -1,9 +1,9 @@
 // Issue 24: one localization path. On the real flight (the 16 frames as an AIR folder), on every
 // backend family this build has: `trnkit localize`, the library's whole-flight run, the online
 // Localizer fed row by row (AirFrameReader: frames as taken, attitude, altitude, odometry
-// increments) and docs/EMBEDDING.md's C program give the same estimates: bit for bit between the
-// library, the online Localizer and C (printed with 17 digits), and to the CSV's 10 digits with the
-// CLI. Skipped (visibly) without the shared data.
+// increments) and docs/EMBEDDING.md's C and C++ programs give the same estimates: bit for bit
+// between the library, the online Localizer, C and C++ (printed with 17 digits), and to the CSV's 10
+// digits with the CLI. Skipped (visibly) without the shared data.
 #include <cstdio>
 #include <sstream>
 
@@ -33,7 +33,7 @@ localize::LocalizerConfig cli_defaults() {  // what `trnkit localize --init-radi
     return c;
 }
 
-TEST_P(RealFlightLocalizer, CliLibraryOnlineAndCGiveTheSameEstimates) {
+TEST_P(RealFlightLocalizer, CliLibraryOnlineCAndCxxGiveTheSameEstimates) {
     const std::string backend = GetParam();
     std::unique_ptr<Backend> batch_backend, online_backend;
     try {
@@ -88,28 +88,30 @@ TEST_P(RealFlightLocalizer, CliLibraryOnlineAndCGiveTheSameEstimates) {
     }
     EXPECT_EQ(step, batch.rows.size());
 
-    // docs/EMBEDDING.md's C program.
+    // docs/EMBEDDING.md's C and C++ programs.
     char args[64];
     std::snprintf(args, sizeof args, " %.17g %.17g ", mpp, in.camera.hfov_deg);
-    const auto c = run_shell(std::string(TRN_LOCALIZE_FLIGHT_EXE) + " " + dir_ + " " + map() + args + backend + " 2>&1");
-    ASSERT_EQ(c.code, 0) << c.output;
-    std::istringstream lines(c.output);
-    std::size_t row = 0;
-    for (std::string line; std::getline(lines, line);) {
-        if (line.rfind("step ", 0) != 0) continue;
-        std::istringstream cells(line.substr(5));
-        std::size_t index;
-        std::string x, y, yaw;
-        cells >> index >> x >> y >> yaw;
-        ASSERT_LT(row, batch.rows.size()) << line;
-        EXPECT_EQ(index, row);
-        EXPECT_EQ(std::strtod(x.c_str(), nullptr), batch.rows[row].estimate_x) << line;
-        EXPECT_EQ(std::strtod(y.c_str(), nullptr), batch.rows[row].estimate_y) << line;
-        EXPECT_EQ(std::strtod(yaw.c_str(), nullptr), batch.rows[row].estimate_yaw) << line;
-        ++row;
+    for (const char* program : {TRN_LOCALIZE_FLIGHT_EXE, TRN_LOCALIZE_FLIGHT_CPP_EXE}) {
+        const auto c = run_shell(std::string(program) + " " + dir_ + " " + map() + args + backend + " 2>&1");
+        ASSERT_EQ(c.code, 0) << c.output;
+        std::istringstream lines(c.output);
+        std::size_t row = 0;
+        for (std::string line; std::getline(lines, line);) {
+            if (line.rfind("step ", 0) != 0) continue;
+            std::istringstream cells(line.substr(5));
+            std::size_t index;
+            std::string x, y, yaw;
+            cells >> index >> x >> y >> yaw;
+            ASSERT_LT(row, batch.rows.size()) << line;
+            EXPECT_EQ(index, row);
+            EXPECT_EQ(std::strtod(x.c_str(), nullptr), batch.rows[row].estimate_x) << line;
+            EXPECT_EQ(std::strtod(y.c_str(), nullptr), batch.rows[row].estimate_y) << line;
+            EXPECT_EQ(std::strtod(yaw.c_str(), nullptr), batch.rows[row].estimate_yaw) << line;
+            ++row;
+        }
+        EXPECT_EQ(row, batch.rows.size()) << c.output;
     }
-    EXPECT_EQ(row, batch.rows.size()) << c.output;
-    std::cout << backend << ": " << batch.rows.size() << " steps identical (CLI, library, online, C); filter mean error "
+    std::cout << backend << ": " << batch.rows.size() << " steps identical (CLI, library, online, C, C++); filter mean error "
               << batch.summary.filter_mean_error_m << " m\n";
 }
 
