@@ -393,6 +393,55 @@ static void test_errors(void) {
     trn_backend_destroy(cpu), trn_backend_destroy(ref);
 }
 
+/* The localizer's C entry points: bad arguments named, no start refused at the first step, a step
+ * without a frame propagates, a frame without its scale is refused, NULL destroy ignored. */
+static void test_localizer(void) {
+    trn_backend* cpu = NULL;
+    trn_localizer* loc = NULL;
+    trn_localizer_config c = trn_localizer_config_default();
+    trn_observation o = trn_observation_default();
+    trn_estimate e;
+    CHECK_OK(trn_backend_create("cpu", &cpu));
+    CHECK(isnan(c.start_x) && c.template_width == 160 && c.max_particles == 2000 && c.sparse == 1.0, "config defaults");
+    CHECK_FAILS(trn_localizer_create(NULL, map_pixels, MAP_W, MAP_H, MAP_STRIDE, 0.5, &c, &loc), TRN_ERR_INVALID_ARGUMENT, "backend is NULL");
+    CHECK_FAILS(trn_localizer_create(cpu, map_pixels, MAP_W, MAP_H, MAP_W - 1, 0.5, &c, &loc), TRN_ERR_INVALID_ARGUMENT, "stride");
+    CHECK_FAILS(trn_localizer_create(cpu, map_pixels, MAP_W, MAP_H, MAP_STRIDE, 0, &c, &loc), TRN_ERR_FAILED, "metres_per_pixel");
+    c.sparse = 2;
+    CHECK_FAILS(trn_localizer_create(cpu, map_pixels, MAP_W, MAP_H, MAP_STRIDE, 0.5, &c, &loc), TRN_ERR_INVALID_ARGUMENT, "sparse");
+    c.sparse = 1;
+    c.conversion = "cubic";
+    CHECK_FAILS(trn_localizer_create(cpu, map_pixels, MAP_W, MAP_H, MAP_STRIDE, 0.5, &c, &loc), TRN_ERR_FAILED, "cubic");
+    c.conversion = NULL;
+    CHECK(loc == NULL, "out not reset on failure");
+    c.init_radius_m = 20, c.max_particles = 300;
+    CHECK_OK(trn_localizer_create(cpu, map_pixels, MAP_W, MAP_H, MAP_STRIDE, 0.5, &c, &loc));
+    CHECK_FAILS(trn_localizer_step(loc, &o, &e), TRN_ERR_FAILED, "start_x, start_y: required");
+    trn_localizer_destroy(loc);
+    loc = NULL;
+    c.start_x = MAP_W / 2.0, c.start_y = MAP_H / 2.0;
+    CHECK_OK(trn_localizer_create(cpu, map_pixels, MAP_W, MAP_H, MAP_STRIDE, 0.5, &c, &loc));
+    o.odometry_east_m = 1, o.odometry_north_m = 0;
+    CHECK_OK(trn_localizer_step(loc, &o, &e)); /* no frame: the particles move, nothing is scored */
+    CHECK(e.frame_missing && e.particles > 0 && fabs(e.x - MAP_W / 2.0) < 40 / 0.5 && strcmp(e.lock_state, "none") == 0,
+          "frameless step: missing %d particles %zu x %g lock %s", e.frame_missing, e.particles, e.x, e.lock_state);
+    o.frame = map_pixels, o.width = T_W, o.height = T_H, o.stride = MAP_STRIDE;
+    CHECK_FAILS(trn_localizer_step(loc, &o, &e), TRN_ERR_FAILED, "camera_hfov_deg"); /* neither scale nor camera */
+    o.map_px_per_camera_px = 1;
+    CHECK_OK(trn_localizer_step(loc, &o, &e));
+    CHECK(!e.frame_missing && e.particles > 0 && e.step_ms >= e.score_ms, "scored step: missing %d particles %zu", e.frame_missing, e.particles);
+    CHECK_FAILS(trn_localizer_step(loc, NULL, &e), TRN_ERR_INVALID_ARGUMENT, "observation is NULL");
+    trn_localizer_destroy(loc);
+    trn_localizer_destroy(NULL);
+    trn_backend_destroy(cpu); /* the localizer kept it alive until here */
+    {
+        trn_air_reader* r = NULL;
+        trn_image* img = NULL;
+        CHECK_FAILS(trn_air_reader_open("/nonexistent/air", &r), TRN_ERR_FAILED, "/nonexistent/air");
+        CHECK_FAILS(trn_image_load("/nonexistent.png", &img), TRN_ERR_FAILED, "/nonexistent.png");
+        CHECK(r == NULL && img == NULL, "out not reset on failure");
+    }
+}
+
 int main(int argc, char** argv) {
     trn_device_list* list = NULL;
     trn_device_info info;
@@ -421,6 +470,7 @@ int main(int argc, char** argv) {
     }
     trn_device_list_destroy(list);
     test_errors();
+    test_localizer();
     test_energy(argv[1]);
     printf("test_capi: %d passed, %d failed\n", checks - failures, failures);
     return failures ? 1 : 0;
