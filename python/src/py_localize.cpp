@@ -23,7 +23,6 @@
 #include "trn/localize/localization.hpp"
 #include "trn/localize/localizer.hpp"
 #include "trn/localize/report_folder.hpp"
-#include "trn/registry.hpp"
 
 namespace trn::py {
 namespace {
@@ -206,7 +205,7 @@ pyb::dict summary_dict(const localize::LocalizationSummary& s) {
     return d;
 }
 
-pyb::dict localize_flight(const std::string& dataset, const std::string& map, const std::string& backend, double metres_per_pixel,
+pyb::dict localize_flight(const std::string& dataset, const std::string& map, const std::shared_ptr<PyBackend>& backend, double metres_per_pixel,
                           double hfov_deg, double fps, double rate_hz, std::optional<std::pair<double, double>> start,
                           std::optional<double> start_heading_rad, const std::string& odometry, double max_tilt_deg, int template_width,
                           double sparse, std::uint64_t seed, const std::string& conversion, const std::string& sampling,
@@ -224,11 +223,12 @@ pyb::dict localize_flight(const std::string& dataset, const std::string& map, co
         spec.to_latlon = in.to_latlon;
         spec.localizer = make_config(start, start_heading_rad, std::nullopt, max_tilt_deg, template_width, sparse, seed, conversion, sampling,
                                      min_particles, max_particles, particles, init_radius_m, reinit_radius_m);
-        const std::unique_ptr<Backend> b = default_registry().create(backend);
+        if (!backend) throw pyb::type_error("backend: a trnkit.Backend");
         localize::LocalizationResult r;
         {
             pyb::gil_scoped_release release;
-            r = localize::run_localization(spec, in.map.image.view(), in.map.metres_per_pixel, *b);
+            std::lock_guard<std::mutex> lock(backend->mutex);  // the whole flight on this backend
+            r = localize::run_localization(spec, in.map.image.view(), in.map.metres_per_pixel, backend->open_backend());
             if (!out.empty()) {
                 localize::ReportOptions report;
                 report.owner = "localize", report.folder_name = "out", report.plots = plots, report.plot_title = in.scenario;
@@ -324,7 +324,7 @@ a list of dicts with row, filename, image_error, truth ((x, y) map pixels or Non
 keyword arguments of Localizer.step (frame as taken, odometry since the previous row, heading_rad,
 altitude_agl_m, attitude).)");
 
-    m.def("_localize", &localize_flight, pyb::kw_only(), "dataset"_a, "map"_a = "", "backend"_a = "cpu", "metres_per_pixel"_a = 0.0,
+    m.def("_localize", &localize_flight, pyb::kw_only(), "dataset"_a, "map"_a = "", "backend"_a, "metres_per_pixel"_a = 0.0,
           "hfov_deg"_a = 0.0, "fps"_a = 0.0, "rate_hz"_a = 5.0, "start"_a = pyb::none(), "start_heading_rad"_a = pyb::none(),
           "odometry"_a = "recorded", "max_tilt_deg"_a = 10.0, "template_width"_a = 160, "sparse"_a = 1.0, "seed"_a = 1,
           "conversion"_a = "logistic:0.2", "sampling"_a = "kld", "min_particles"_a = 100, "max_particles"_a = 2000, "particles"_a = 1000,

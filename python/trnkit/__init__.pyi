@@ -166,7 +166,7 @@ class Localizer(AbstractContextManager["Localizer"]):
 
 def load_gray(path: str | os.PathLike[str]) -> npt.NDArray[np.uint8]: ...
 def read_air_folder(folder: str | os.PathLike[str]) -> list[dict[str, Any]]: ...
-def localize(*, dataset: str, map: str = "", backend: str = "cpu", metres_per_pixel: float = 0.0, hfov_deg: float = 0.0,
+def localize(*, dataset: str, map: str = "", backend: Backend | str = "cpu", metres_per_pixel: float = 0.0, hfov_deg: float = 0.0,
              fps: float = 0.0, rate_hz: float = 5.0, start: tuple[float, float] | None = None, start_heading_rad: float | None = None,
              odometry: Literal["recorded", "visual"] = "recorded", max_tilt_deg: float = 10.0, template_width: int = 160,
              sparse: float = 1.0, seed: int = 1, conversion: str = "logistic:0.2", sampling: str = "kld", min_particles: int = 100,

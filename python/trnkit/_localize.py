@@ -102,7 +102,8 @@ def localize(*, dataset, map="", backend="cpu", metres_per_pixel=0.0, hfov_deg=0
              reinit_radius_m=300.0, out="", plots=False):
     """Localizes a whole AIR folder as `trnkit localize` does (same defaults: a 50 m start prior).
 
-    dataset: the AIR folder; map: the map image (default: the one flight.json names);
+    dataset: the AIR folder; map: the map image (default: the one flight.json names); backend: a
+    trnkit.Backend or a spec string (then made for this flight and closed after it);
     metres_per_pixel, hfov_deg (degrees), fps: when flight.json does not say them (0: not given);
     rate_hz: filter steps per second; start: (x, y) map pixels (None: the first row's ground truth);
     start_heading_rad: RADIANS (None: the first heading); odometry: "recorded" (the folder's
@@ -113,6 +114,13 @@ def localize(*, dataset, map="", backend="cpu", metres_per_pixel=0.0, hfov_deg=0
     odometry_y, estimate_x, estimate_y, estimate_yaw, error_m, odometry_error_m, particles,
     score_ms, estimate_lat, estimate_lon), "summary": summary.json's numbers, "backend",
     "metres_per_pixel", "start"}. Errors name the keyword (ValueError "dataset: ...")."""
+    if isinstance(backend, str):
+        with Backend(backend) as own:  # made for this flight, closed after it
+            return localize(dataset=dataset, map=map, backend=own, metres_per_pixel=metres_per_pixel, hfov_deg=hfov_deg, fps=fps,
+                            rate_hz=rate_hz, start=start, start_heading_rad=start_heading_rad, odometry=odometry,
+                            max_tilt_deg=max_tilt_deg, template_width=template_width, sparse=sparse, seed=seed, conversion=conversion,
+                            sampling=sampling, min_particles=min_particles, max_particles=max_particles, particles=particles,
+                            init_radius_m=init_radius_m, reinit_radius_m=reinit_radius_m, out=out, plots=plots)
     return _trnkit._localize(dataset=dataset, map=map, backend=backend, metres_per_pixel=metres_per_pixel, hfov_deg=hfov_deg, fps=fps,
                              rate_hz=rate_hz, start=None if start is None else tuple(start), start_heading_rad=start_heading_rad,
                              odometry=odometry, max_tilt_deg=max_tilt_deg, template_width=template_width, sparse=sparse, seed=seed,

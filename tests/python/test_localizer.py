@@ -93,6 +93,8 @@ def test_a_backend_with_keywords_serves_the_localizer_and_closing_it_releases_th
     rows = trnkit.read_air_folder(air)[:3]
     want = trnkit.localize(dataset=air, map=ortho, backend="cpu", rate_hz=0.5)["rows"]["estimate_x"][:3]
     backend = trnkit.Backend("cpu", threads=1)
+    whole = trnkit.localize(dataset=air, map=ortho, backend=backend, rate_hz=0.5)  # a Backend serves localize too
+    np.testing.assert_array_equal(whole["rows"]["estimate_x"][:3], want)
     loc = trnkit.Localizer(trnkit.load_gray(ortho), 0.5, backend, start=rows[0]["truth"], camera_hfov_deg=60, init_radius_m=50)
     got = [loc.step(**row["step"])["x"] for row in rows]
     np.testing.assert_array_equal(got, want)  # one thread or all: the same bits
