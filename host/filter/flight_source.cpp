@@ -8,20 +8,15 @@
 #include "trn/io/input_file.hpp"
 #include "trn/filter/nadir_warp.hpp"
 #include "trn/sim/render.hpp"
-#include "trn/detail/angles.hpp"
 
 namespace trn::filter {
 
 namespace {
 
-// Below this the frame is taken as level and left as it is (a quaternion written for roll = pitch = 0
-// reads back as ~1e-14 deg).
-constexpr double kLevelDeg = 1e-6;
-
 // Tilt of the optical axis from the vertical by the measured attitude (ImuX..W), degrees.
 double tilt_deg(const sim::AirRecord& r) {
     const sim::RollPitch rp = sim::roll_pitch_from_quaternion(r.imu);
-    return sim::tilt_from_nadir(rp.roll_rad, rp.pitch_rad) * 180 / kPi;
+    return filter::tilt_deg(rp.roll_rad, rp.pitch_rad);
 }
 
 std::string place(const sim::AirReader& r, const std::string& filename) {
@@ -143,14 +138,13 @@ bool AirFlightSource::next(FlightSample& s) {
             }
             ++loaded_;
             const sim::RollPitch rp = sim::roll_pitch_from_quaternion(r.imu);
-            if (s.tilt_deg > kLevelDeg) {
-                try {
-                    s.image = warp_to_nadir(s.image.view(), own.hfov_deg, rp.roll_rad, rp.pitch_rad).image;
-                } catch (const Error& e) {  // no level view left (a generous --max-tilt-deg): too oblique after all
-                    s.image = {};
-                    s.too_oblique = true;
-                    s.image_error = position() + ": " + e.what();
-                }
+            LevelledFrame level = level_frame(s.image.view(), own.hfov_deg, rp.roll_rad, rp.pitch_rad, max_tilt_deg_);
+            if (level.too_oblique) {  // no level view left (a generous max_tilt_deg)
+                s.image = {};
+                s.too_oblique = true;
+                s.image_error = position() + ": " + level.error;
+            } else if (!level.image.pixels.empty()) {
+                s.image = std::move(level.image);
             }
         }
         return true;

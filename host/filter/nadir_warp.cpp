@@ -3,9 +3,11 @@
 #include <Eigen/Dense>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <opencv2/imgproc.hpp>
 
 #include "trn/error.hpp"
+#include "trn/sim/air_format.hpp"
 #include "trn/sim/camera.hpp"
 #include "trn/detail/angles.hpp"
 
@@ -75,6 +77,29 @@ NadirFrame warp_to_nadir(GrayView frame, double hfov_deg, double roll_rad, doubl
     cv::warpPerspective(src, dst, m, dst.size(), cv::INTER_LINEAR | cv::WARP_INVERSE_MAP, cv::BORDER_REPLICATE);
     out.kept_fraction = double(width) / frame.width;
     return out;
+}
+
+double tilt_deg(double roll_rad, double pitch_rad) { return sim::tilt_from_nadir(roll_rad, pitch_rad) * 180 / kPi; }
+
+LevelledFrame level_frame(GrayView frame, double hfov_deg, double roll_rad, double pitch_rad, double max_tilt_deg) {
+    LevelledFrame l;
+    l.tilt_deg = tilt_deg(roll_rad, pitch_rad);
+    if (l.tilt_deg > max_tilt_deg) {  // never scored at a wrong place and scale
+        char why[96];
+        std::snprintf(why, sizeof why, "tilted %.6g deg from nadir, more than %.6g", l.tilt_deg, max_tilt_deg);
+        l.too_oblique = true, l.error = why;
+        return l;
+    }
+    if (l.tilt_deg <= kLevelTiltDeg) return l;
+    if (!(hfov_deg > 0 && hfov_deg < 180))
+        throw Error("level_frame: a frame tilted " + std::to_string(l.tilt_deg) + " deg needs its horizontal field of view (hfov_deg), got " +
+                    std::to_string(hfov_deg));
+    try {
+        l.image = warp_to_nadir(frame, hfov_deg, roll_rad, pitch_rad).image;
+    } catch (const Error& e) {  // no level view left (a generous max_tilt_deg): too oblique after all
+        l.too_oblique = true, l.error = e.what();
+    }
+    return l;
 }
 
 }  // namespace trn::filter

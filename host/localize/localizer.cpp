@@ -2,17 +2,12 @@
 
 #include <cstdio>
 
-#include "trn/detail/angles.hpp"
 #include "trn/error.hpp"
-#include "trn/sim/air_format.hpp"
 #include "trn/sim/camera.hpp"
 
 namespace trn::localize {
 namespace {
 
-// Below this the frame is taken as level and left as it is (as the AIR flight source does: a
-// quaternion written for roll = pitch = 0 reads back as ~1e-14 deg).
-constexpr double kLevelDeg = 1e-6;
 
 std::string number(double v) {
     char buf[32];
@@ -90,19 +85,12 @@ Estimate Localizer::step(const Observation& o) {
             const sim::Camera own{o.frame.width, o.frame.height, config_.camera_hfov_deg};
             in.map_px_per_camera_px = sim::template_scale(own, o.altitude_agl_m, mpp_);
         }
-        if (o.has_attitude) {
-            e.tilt_deg = sim::tilt_from_nadir(o.roll_rad, o.pitch_rad) * 180 / kPi;  // as filter::AirFlightSource computes it
-            e.too_oblique = e.tilt_deg > config_.max_tilt_deg;
-            if (!e.too_oblique && e.tilt_deg > kLevelDeg) {
-                if (std::isnan(config_.camera_hfov_deg)) throw Error("localizer: a step with an attitude needs camera_hfov_deg in the config");
-                try {
-                    level = filter::warp_to_nadir(o.frame, config_.camera_hfov_deg, o.roll_rad, o.pitch_rad).image;
-                    in.frame = level.view();
-                } catch (const Error&) {  // no level view left: too oblique after all
-                    e.too_oblique = true;
-                }
-            }
+        if (o.has_attitude) {  // the AIR flight source's rule (filter::level_frame)
+            filter::LevelledFrame l = filter::level_frame(o.frame, config_.camera_hfov_deg, o.roll_rad, o.pitch_rad, config_.max_tilt_deg);
+            e.tilt_deg = l.tilt_deg, e.too_oblique = l.too_oblique;
+            level = std::move(l.image);
             if (e.too_oblique) in.frame = {};
+            else if (!level.pixels.empty()) in.frame = level.view();
         }
     }
     const filter::StepReport rep = filter_->step(in);
