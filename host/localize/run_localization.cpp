@@ -95,20 +95,16 @@ LocalizationResult run_localization(const LocalizationSpec& spec, GrayView map, 
     if (!(spec.rate_hz > 0) || !std::isfinite(spec.rate_hz)) throw FieldError("rate_hz", "must be > 0");
     LocalizerConfig cfg = spec.localizer;
     LocalizationResult result;
-    auto finish = [&](filter::FlightSource& recorded, filter::VisualOdometrySource& visual, RunInfo info) {
+    RunInfo info;  // what the flight adds to the Localizer's part of the RunInfo: stride, frames, rate
+    auto finish = [&](filter::FlightSource& recorded, filter::VisualOdometrySource& visual) {
         if (hooks.started) hooks.started(info);
         Localizer localizer(map, metres_per_pixel, backend, cfg);
         const bool use_visual = spec.odometry == OdometryKind::Visual;
         result = run_localization(use_visual ? static_cast<filter::FlightSource&>(visual) : recorded, localizer, hooks.progress);
-        const RunInfo filled = result.run;
-        result.run = info;
-        result.run.backend = filled.backend, result.run.device = filled.device, result.run.conversion = filled.conversion;
-        result.run.sampling = filled.sampling, result.run.sparse = filled.sparse, result.run.seed = filled.seed;
-        result.run.template_width = filled.template_width, result.run.start_x = filled.start_x, result.run.start_y = filled.start_y;
+        result.run.stride = info.stride, result.run.frames = info.frames, result.run.filter_rate_hz = info.filter_rate_hz;
         result.run.visual_odometry = use_visual;
         if (use_visual) result.run.visual_odometry_counts = visual.counts();
     };
-    RunInfo info;
     if (const auto* air = std::get_if<AirFolderFlight>(&spec.flight)) {
         const std::string& folder = air->folder;
         if (folder.empty()) throw FieldError("flight.folder", "required (an AIR flight folder)");
@@ -130,7 +126,7 @@ LocalizationResult run_localization(const LocalizationSpec& spec, GrayView map, 
         cfg.camera_hfov_deg = air->camera.hfov_deg, cfg.max_tilt_deg = air->max_tilt_deg;
         filter::VisualOdometrySource visual(source, metres_per_pixel);
         try {
-            finish(source, visual, info);
+            finish(source, visual);
         } catch (const FieldError&) {
             throw;
         } catch (const Error& e) {
@@ -148,7 +144,7 @@ LocalizationResult run_localization(const LocalizationSpec& spec, GrayView map, 
         info.frames = simulated.frames_hint() * info.stride;
         cfg.camera_hfov_deg = sim_flight.flight.camera.hfov_deg;
         filter::VisualOdometrySource visual(simulated, sim_flight.world->metres_per_pixel);
-        finish(simulated, visual, info);
+        finish(simulated, visual);
     }
     if (spec.to_latlon)  // the estimates also as latitude / longitude
         for (LocalizationRow& r : result.rows) {
