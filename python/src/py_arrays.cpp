@@ -1,6 +1,7 @@
 // Conversions between NumPy arrays and trnkit's image views and poses.
 #include "py_arrays.hpp"
 
+#include <algorithm>
 #include <string>
 
 namespace trn::py {
@@ -81,6 +82,12 @@ std::vector<Pose> poses_from(const pyb::handle& poses) {
     const float* p = a.data();
     for (std::size_t i = 0; i < out.size(); ++i) out[i] = {p[4 * i], p[4 * i + 1], p[4 * i + 2], p[4 * i + 3]};
     return out;
+}
+
+pyb::array_t<std::uint8_t> gray_array(GrayView image) {
+    pyb::array_t<std::uint8_t> a({image.height, image.width});
+    for (int y = 0; y < image.height; ++y) std::copy_n(image.row(y), image.width, a.mutable_data(y, 0));
+    return a;
 }
 
 }  // namespace trn::py

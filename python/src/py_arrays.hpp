@@ -29,6 +29,8 @@ struct BorrowedTemplate {
 BorrowedGray gray_view(const pyb::handle& image, const char* what);
 // uint8 or float32 2-D template; other float types are converted to float32 (a copy).
 BorrowedTemplate template_view(const pyb::handle& image, const char* what);
+// A new (height, width) uint8 array holding a copy of `image`.
+pyb::array_t<std::uint8_t> gray_array(GrayView image);
 // (N, 4) poses x, y, yaw, scale (any real dtype; copied).
 std::vector<Pose> poses_from(const pyb::handle& poses);
 

@@ -133,14 +133,7 @@ pyb::dict air_row(const localize::AirFrame& f) {
     d["filename"] = f.filename;
     d["image_error"] = f.image_error;
     pyb::dict step;  // Localizer.step's keyword arguments
-    if (f.image.pixels.empty()) {
-        step["frame"] = pyb::none();
-    } else {
-        pyb::array_t<std::uint8_t> a({f.image.height, f.image.width});
-        for (int y = 0; y < f.image.height; ++y)
-            std::copy_n(f.image.view().row(y), f.image.width, a.mutable_data(y, 0));
-        step["frame"] = a;
-    }
+    step["frame"] = f.image.pixels.empty() ? pyb::object(pyb::none()) : pyb::object(gray_array(f.image.view()));
     step["altitude_agl_m"] = f.altitude_agl_m;
     step["heading_rad"] = maybe(f.heading_rad);
     step["attitude"] = pyb::make_tuple(f.roll_rad, f.pitch_rad);
@@ -310,12 +303,7 @@ score_ms, step_ms.)")
 
     m.def(
         "_load_gray",
-        [](const std::string& path) {
-            const GrayImage image = load_gray(path);
-            pyb::array_t<std::uint8_t> a({image.height, image.width});
-            for (int y = 0; y < image.height; ++y) std::copy_n(image.view().row(y), image.width, a.mutable_data(y, 0));
-            return a;
-        },
+        [](const std::string& path) { return gray_array(load_gray(path).view()); },
         "path"_a, "An image file (PNG, JPEG, TIFF ...) as a 2-D uint8 array, grey.");
 
     m.def("_read_air_folder", &read_air_folder, "folder"_a,

@@ -114,15 +114,14 @@ def localize(*, dataset, map="", backend="cpu", metres_per_pixel=0.0, hfov_deg=0
     odometry_y, estimate_x, estimate_y, estimate_yaw, error_m, odometry_error_m, particles,
     score_ms, estimate_lat, estimate_lon), "summary": summary.json's numbers, "backend",
     "metres_per_pixel", "start"}. Errors name the keyword (ValueError "dataset: ...")."""
-    if isinstance(backend, str):
-        with Backend(backend) as own:  # made for this flight, closed after it
-            return localize(dataset=dataset, map=map, backend=own, metres_per_pixel=metres_per_pixel, hfov_deg=hfov_deg, fps=fps,
-                            rate_hz=rate_hz, start=start, start_heading_rad=start_heading_rad, odometry=odometry,
-                            max_tilt_deg=max_tilt_deg, template_width=template_width, sparse=sparse, seed=seed, conversion=conversion,
-                            sampling=sampling, min_particles=min_particles, max_particles=max_particles, particles=particles,
-                            init_radius_m=init_radius_m, reinit_radius_m=reinit_radius_m, out=out, plots=plots)
-    return _trnkit._localize(dataset=dataset, map=map, backend=backend, metres_per_pixel=metres_per_pixel, hfov_deg=hfov_deg, fps=fps,
-                             rate_hz=rate_hz, start=None if start is None else tuple(start), start_heading_rad=start_heading_rad,
-                             odometry=odometry, max_tilt_deg=max_tilt_deg, template_width=template_width, sparse=sparse, seed=seed,
-                             conversion=conversion, sampling=sampling, min_particles=min_particles, max_particles=max_particles,
-                             particles=particles, init_radius_m=init_radius_m, reinit_radius_m=reinit_radius_m, out=out, plots=plots)
+    own = Backend(backend) if isinstance(backend, str) else None  # made for this flight, closed after it
+    try:
+        return _trnkit._localize(dataset=dataset, map=map, backend=backend if own is None else own, metres_per_pixel=metres_per_pixel,
+                                 hfov_deg=hfov_deg, fps=fps, rate_hz=rate_hz, start=None if start is None else tuple(start), start_heading_rad=start_heading_rad,
+                                 odometry=odometry, max_tilt_deg=max_tilt_deg, template_width=template_width, sparse=sparse, seed=seed,
+                                 conversion=conversion, sampling=sampling, min_particles=min_particles, max_particles=max_particles,
+                                 particles=particles, init_radius_m=init_radius_m, reinit_radius_m=reinit_radius_m, out=out,
+                                 plots=plots)
+    finally:
+        if own is not None:
+            own.close()
