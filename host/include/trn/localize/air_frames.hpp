@@ -24,7 +24,6 @@ public:
         double east_m = NAN, north_m = NAN;
     };
     Step next(double east_m, double north_m);
-    bool started() const { return started_; }
     double origin_east_m() const { return e0_; }
     double origin_north_m() const { return n0_; }
     double last_east_m() const { return prev_e_; }
