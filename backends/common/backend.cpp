@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "trn/impl/cell_mask.hpp"
 #include "trn/limits.hpp"
 
 namespace trn {
@@ -34,15 +35,34 @@ void check_pose(const Pose& p, std::size_t i) {
 
 }  // namespace
 
-MapHandle Backend::upload_map(GrayView map, PhaseTimes* times) {
+MapHandle Backend::upload_map(GrayView map, PhaseTimes* times) { return upload_map(map, GrayView{}, times); }
+
+MapHandle Backend::upload_map(GrayView map, GrayView valid, PhaseTimes* times) {
     check_view(map, "upload_map", "map");
     if (map.width < 2 || map.height < 2)
         throw Error("upload_map: map " + size_text(map.width, map.height) + " is smaller than 2x2");
-    // The backend's own layout decides the memory (cpu: vertical pixel pairs, 2 B/px; Vulkan quads: 4 B/px).
+    const bool has_mask = valid.data != nullptr;
+    if (has_mask) {
+        check_view(valid, "upload_map", "validity mask");
+        if (valid.width != map.width || valid.height != map.height)
+            throw Error("upload_map: validity mask " + size_text(valid.width, valid.height) + " differs from the map " +
+                        size_text(map.width, map.height));
+    }
+    // The backend's own layout decides the memory (cpu: vertical pixel pairs, 2 B/px; Vulkan quads:
+    // 4 B/px), plus a bit per cell for no-data.
+    const double pixels = double(map.width) * double(map.height);
+    const double mask_bytes = has_mask ? CellMask::bytes(map.width, map.height) : 0.0;
     limits::check_image("upload_map: map", map.width, map.height, limits::kMaxMapPixels,
-                        map_bytes(map.width, map.height) / (double(map.width) * double(map.height)));
+                        (map_bytes(map.width, map.height) + mask_bytes) / pixels);
+    CellMask mask;
+    if (has_mask) {
+        mask = make_cell_mask(valid);
+        if (mask.invalid_cells == std::int64_t(mask.cells_x) * mask.cells_y)
+            throw Error("upload_map: the validity mask leaves no 2x2 cell of the " + size_text(map.width, map.height) +
+                        " map with four valid pixels: nothing could be scored");
+    }
     if (times) *times = {};
-    return do_upload_map(map, times);
+    return do_upload_map(map, has_mask && mask.invalid_cells > 0 ? &mask : nullptr, times);
 }
 
 void Backend::score(const MapHandle& map, const ScoringPlan& plan, std::span<const Pose> poses,

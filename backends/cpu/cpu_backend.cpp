@@ -4,6 +4,7 @@
 #include "cpu_backend.hpp"
 #include "ncc_rows.hpp"
 #include "thread_pool.hpp"
+#include "trn/impl/cell_mask.hpp"
 #include "trn/impl/particle_sums.hpp"
 
 #include <algorithm>
@@ -32,31 +33,64 @@ public:
     static constexpr double bytes(std::int64_t width, std::int64_t height) {
         return 2.0 * double(width) * double(height - 1) + double(kPad);
     }
-    CpuMap(const Backend* owner, GrayView v)
-        : MapStorage(owner, v.width, v.height), pair_stride(2 * std::ptrdiff_t(v.width)),
+    CpuMap(const Backend* owner, GrayView v, const CellMask* no_data)
+        : MapStorage(owner, v.width, v.height, no_data != nullptr), pair_stride(2 * std::ptrdiff_t(v.width)),
           pairs(static_cast<std::size_t>(bytes(v.width, v.height)), 0) {
         for (int y = 0; y + 1 < v.height; ++y) {
             const std::uint8_t *top = v.row(y), *bottom = v.row(y + 1);
             std::uint8_t* out = pairs.data() + std::size_t(y) * std::size_t(pair_stride);
             for (int x = 0; x < v.width; ++x) out[2 * x] = top[x], out[2 * x + 1] = bottom[x];
         }
+        if (no_data) {
+            mask = *no_data;
+            mark_full_tiles();
+        }
     }
-    cpu::MapPixels view() const { return {pairs.data(), pair_stride, width(), height()}; }
+    cpu::MapPixels view() const {
+        return {pairs.data(), pair_stride, width(), height(), masked() ? mask.words.data() : nullptr, mask.words_per_row};
+    }
+    // True when every cell in columns [x_lo, x_hi] and rows [y_lo, y_hi] (clamped to the map) is
+    // valid, judged by 32x32-cell tiles: a particle there takes the unchecked (fast) samplers.
+    bool cells_valid(int x_lo, int y_lo, int x_hi, int y_hi) const {
+        if (!masked()) return true;
+        const int tx0 = std::max(x_lo, 0) >> 5, tx1 = std::min(x_hi, mask.cells_x - 1) >> 5;
+        const int ty0 = std::max(y_lo, 0) >> 5, ty1 = std::min(y_hi, mask.cells_y - 1) >> 5;
+        for (int ty = ty0; ty <= ty1; ++ty)
+            for (int tx = tx0; tx <= tx1; ++tx)
+                if (!full_tile[std::size_t(ty) * mask.words_per_row + tx]) return false;
+        return true;
+    }
     std::ptrdiff_t pair_stride;
     std::vector<std::uint8_t> pairs;
+    CellMask mask;                       // no-data, when masked()
+    std::vector<std::uint8_t> full_tile;  // per 32x32 cells (a mask word wide): all valid
+
+private:
+    void mark_full_tiles() {
+        const int tiles_y = (mask.cells_y + 31) / 32, wpr = mask.words_per_row;
+        full_tile.assign(std::size_t(tiles_y) * wpr, 1);
+        for (int y = 0; y < mask.cells_y; ++y)
+            for (int tx = 0; tx < wpr; ++tx) {
+                const int bits = std::min(32, mask.cells_x - 32 * tx);
+                const std::uint32_t all = bits == 32 ? 0xFFFFFFFFu : (1u << bits) - 1u;
+                if (mask.words[std::size_t(y) * wpr + tx] != all) full_tile[std::size_t(y / 32) * wpr + tx] = 0;
+            }
+    }
 };
 
-// True when every sample position of the template rectangle lies inside the map, so per-sample
-// checks can be skipped. The mapped rectangle is convex, so its four corners decide; a one-pixel
-// margin absorbs float rounding of the individual sample positions.
+// True when every sample position of the template rectangle lies inside the map and on valid
+// cells, so per-sample checks can be skipped. The mapped rectangle is convex, so its four corners
+// decide; a one-pixel margin absorbs float rounding of the individual sample positions.
 bool patch_inside(const CpuMap& m, const Affine& A, const ScoringPlan& plan) {
     const float hx = plan.cx, hy = plan.cy;
+    float x_lo = 1e30f, y_lo = 1e30f, x_hi = -1e30f, y_hi = -1e30f;
     for (float su : {-hx, hx})
         for (float sv : {-hy, hy}) {
             const float px = (A.tx + A.a * su) + A.b * sv, py = (A.ty + A.c * su) + A.d * sv;
             if (!(px >= 1.0f && py >= 1.0f && px <= float(m.width() - 2) && py <= float(m.height() - 2))) return false;
+            x_lo = std::min(x_lo, px), y_lo = std::min(y_lo, py), x_hi = std::max(x_hi, px), y_hi = std::max(y_hi, py);
         }
-    return true;
+    return m.cells_valid(int(x_lo) - 1, int(y_lo) - 1, int(x_hi) + 1, int(y_hi) + 1);
 }
 
 // Per-thread scratch that only grows, so steady-state calls allocate nothing.
@@ -89,9 +123,9 @@ public:
     const DeviceInfo& info() const override { return info_; }
 
 protected:
-    MapHandle do_upload_map(GrayView map, PhaseTimes* times) override {
+    MapHandle do_upload_map(GrayView map, const CellMask* mask, PhaseTimes* times) override {
         const auto t0 = Clock::now();
-        auto m = std::make_shared<CpuMap>(this, map);
+        auto m = std::make_shared<CpuMap>(this, map, mask);
         if (times) times->upload_ms = ms_since(t0);
         return m;
     }

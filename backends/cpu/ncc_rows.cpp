@@ -23,6 +23,9 @@ RowSums sample_row(const MapPixels& m, const RowInput& row) {
             py = std::clamp(py, 0.0f, ymax);
         }
         const int x0 = std::min(int(px), x0max), y0 = std::min(int(py), y0max);  // px >= 0: int() == floor
+        if constexpr (Checked)
+            if (m.cell_mask)  // a cell holding no-data leaves the sample out
+                valid &= (m.cell_mask[std::ptrdiff_t(y0) * m.mask_words_per_row + (x0 >> 5)] >> (x0 & 31)) & 1u;
         const float fx = px - float(x0), fy = py - float(y0);
         const std::uint8_t* p = m.pairs + std::ptrdiff_t(y0) * m.pair_stride + 2 * std::ptrdiff_t(x0);  // m00 m01 m10 m11
         const std::int64_t j = valid * fixed::bilinear(p[0], p[2], p[1], p[3], fixed::weight(fx), fixed::weight(fy));

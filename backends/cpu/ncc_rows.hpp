@@ -21,6 +21,9 @@ struct MapPixels {
     const std::uint8_t* pairs;     // (height - 1) rows of 2 * width bytes, >= 4 spare bytes after them
     std::ptrdiff_t pair_stride;    // bytes from one pair row to the next (2 * width)
     int width, height;
+    // No-data (trn/impl/cell_mask.hpp's words), or nullptr: only the checked sampler reads it.
+    const std::uint32_t* cell_mask = nullptr;
+    std::ptrdiff_t mask_words_per_row = 0;
 };
 
 // One row of samples. Dense rows share one (bdv, ddv); sparse chunks give one per sample.
@@ -39,7 +42,8 @@ struct RowInput {
     float a = 0, b = 0, c = 0, d = 0, tx = 0, ty = 0;
 };
 
-// Checked = samples may fall outside the map (masked out); unchecked = all known inside.
+// Checked = samples may fall outside the map or on no-data (left out); unchecked = all known inside
+// and on valid cells.
 RowSums sample_row_checked(const MapPixels& m, const RowInput& row);
 RowSums sample_row_inside(const MapPixels& m, const RowInput& row);
 

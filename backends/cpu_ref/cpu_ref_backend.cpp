@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "trn/fixed_point.hpp"
+#include "trn/impl/cell_mask.hpp"
 #include "trn/impl/particle_sums.hpp"
 
 namespace trn {
@@ -18,13 +19,15 @@ class RefMap : public MapStorage {
 public:
     // One byte per pixel, rows packed: the constructor's size and upload_map's estimate.
     static constexpr double bytes(std::int64_t width, std::int64_t height) { return double(width) * double(height); }
-    RefMap(const Backend* owner, GrayView v)
-        : MapStorage(owner, v.width, v.height), pixels(static_cast<std::size_t>(bytes(v.width, v.height))) {
+    RefMap(const Backend* owner, GrayView v, const CellMask* no_data)
+        : MapStorage(owner, v.width, v.height, no_data != nullptr), pixels(static_cast<std::size_t>(bytes(v.width, v.height))) {
         for (int y = 0; y < v.height; ++y)
             for (int x = 0; x < v.width; ++x) pixels[std::size_t(y) * v.width + x] = v.at(x, y);
+        if (no_data) mask = *no_data;
     }
     std::uint8_t at(int x, int y) const { return pixels[std::size_t(y) * width() + x]; }
     std::vector<std::uint8_t> pixels;
+    CellMask mask;  // empty unless masked()
 };
 
 // Position and bilinear value exactly as scoring.hpp specifies; volatile stores keep the compiler
@@ -38,6 +41,7 @@ bool sample(const RefMap& m, const Affine& A, float du, float dv, std::int64_t& 
     int x0 = static_cast<int>(std::floor(px)), y0 = static_cast<int>(std::floor(py));
     if (x0 > m.width() - 2) x0 = m.width() - 2;
     if (y0 > m.height() - 2) y0 = m.height() - 2;
+    if (m.masked() && !m.mask.valid(x0, y0)) return false;  // the cell holds no-data
     const float fx = px - float(x0), fy = py - float(y0);  // exact (Sterbenz)
     value = fixed::bilinear(m.at(x0, y0), m.at(x0 + 1, y0), m.at(x0, y0 + 1), m.at(x0 + 1, y0 + 1), fixed::weight(fx),
                             fixed::weight(fy));
@@ -65,9 +69,9 @@ public:
     const DeviceInfo& info() const override { return info_; }
 
 protected:
-    MapHandle do_upload_map(GrayView map, PhaseTimes* times) override {
+    MapHandle do_upload_map(GrayView map, const CellMask* mask, PhaseTimes* times) override {
         const Timer timer(times ? &times->upload_ms : nullptr);
-        return std::make_shared<RefMap>(this, map);
+        return std::make_shared<RefMap>(this, map, mask);
     }
 
     double do_map_bytes(std::int64_t width, std::int64_t height) const override { return RefMap::bytes(width, height); }

@@ -17,6 +17,7 @@
 #include "../common/pow2.hpp"
 #include "device_buffer.hpp"
 #include "embedded_kernels.hpp"
+#include "trn/impl/cell_mask.hpp"
 #include "trn/impl/particle_sums.hpp"
 #include "program_cache.hpp"
 
@@ -58,11 +59,15 @@ public:
     // One buffer of packed rows, one byte per pixel: what do_upload_map allocates and upload_map's
     // limit check quotes (device memory; host memory on CPU devices such as PoCL's).
     static std::size_t bytes(std::int64_t w, std::int64_t h) { return std::size_t(w) * std::size_t(h); }
-    OpenClMap(const Backend* owner, int w, int h, MemHandle mem) : MapStorage(owner, w, h), mem_(std::move(mem)) {}
+    OpenClMap(const Backend* owner, int w, int h, MemHandle mem, MemHandle cells, int mask_words)
+        : MapStorage(owner, w, h, static_cast<bool>(cells)), mem_(std::move(mem)), cells_(std::move(cells)), mask_words_(mask_words) {}
     cl_mem mem() const { return mem_.get(); }
+    cl_mem cells() const { return cells_.get(); }  // the cell mask (masked maps only)
+    int mask_words() const { return mask_words_; }  // its words per row; 0 without a mask
 
 private:
-    MemHandle mem_;
+    MemHandle mem_, cells_;
+    int mask_words_;
 };
 
 template <typename T>
@@ -153,6 +158,9 @@ public:
         sparse_ = make_kernel(ncc_program_.get(), "ncc_score_sparse");
         require_work_group(dense_.get(), "ncc_score_dense", wg_size_);
         require_work_group(sparse_.get(), "ncc_score_sparse", wg_size_);
+        cl_uint zero = 0;
+        no_mask_.reset(clCreateBuffer(context_.get(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof zero, &zero, &err));
+        check(err, "clCreateBuffer(no-mask stand-in) on " + info_.name);
 
         info_.details += "; NCC work-group " + std::to_string(wg_size_) + ", from " + std::to_string(ncc_limits.lanes) +
                          " lanes and " + std::to_string(ncc_limits.local_memory_bytes >> 10) + " KiB local memory " +
@@ -165,7 +173,7 @@ public:
     const DeviceInfo& info() const override { return info_; }
 
 protected:
-    MapHandle do_upload_map(GrayView map, PhaseTimes* times) override {
+    MapHandle do_upload_map(GrayView map, const CellMask* mask, PhaseTimes* times) override {
         const std::size_t bytes = OpenClMap::bytes(map.width, map.height);
         const std::string what = "map " + size_text(map.width, map.height) + " (" + std::to_string(bytes >> 20) + " MiB)";
         if (bytes > max_alloc_)
@@ -183,7 +191,14 @@ protected:
               [&] { return "clEnqueueWriteBufferRect(" + what + ") on " + info_.name; });
         EventHandle upload(e);
         if (times) times->upload_ms = event_ms(upload.get());
-        return std::make_shared<OpenClMap>(this, map.width, map.height, std::move(mem));
+        MemHandle cells;
+        if (mask) {
+            const std::size_t mask_bytes = mask->words.size() * sizeof(std::uint32_t);
+            cells.reset(clCreateBuffer(context_.get(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, mask_bytes,
+                                       const_cast<std::uint32_t*>(mask->words.data()), &err));
+            check(err, "clCreateBuffer(no-data mask of the " + what + ") on " + info_.name);
+        }
+        return std::make_shared<OpenClMap>(this, map.width, map.height, std::move(mem), std::move(cells), mask ? mask->words_per_row : 0);
     }
 
     double do_map_bytes(std::int64_t width, std::int64_t height) const override {
@@ -233,6 +248,7 @@ private:
     KernelHandle dense_, sparse_, sobel_, sobel_columns_;
 
     DeviceBuffer affines_, sums_, quantized_, offsets_;
+    MemHandle no_mask_;  // one word: what the kernels' cell-mask argument points at for maps without no-data
     DeviceBuffer sobel_src_, sobel_gx_, sobel_gy_;
     std::vector<float> host_affines_, host_offsets_;
     std::vector<cl_long> host_sums_;
@@ -301,22 +317,25 @@ void OpenClBackend::do_score(const MapStorage& storage, const ScoringPlan& plan,
     const cl_int map_w = map.width(), map_h = map.height();
     cl_kernel k = plan.dense ? dense_.get() : sparse_.get();
     const char* kname = plan.dense ? "ncc_score_dense" : "ncc_score_sparse";
+    const cl_mem cells = map.masked() ? map.cells() : no_mask_.get();
     set_arg(k, 0, map_mem, kname);
     set_arg(k, 1, map_w, kname);
     set_arg(k, 2, map_h, kname);
-    set_arg(k, 3, affines, kname);
-    set_arg(k, 4, quantized, kname);
+    set_arg(k, 3, cells, kname);
+    set_arg(k, 4, cl_int(map.mask_words()), kname);
+    set_arg(k, 5, affines, kname);
+    set_arg(k, 6, quantized, kname);
     if (plan.dense) {
-        set_arg(k, 5, cl_int(plan.width), kname);
-        set_arg(k, 6, cl_int(plan.height), kname);
-        set_arg(k, 7, plan.cx, kname);
-        set_arg(k, 8, plan.cy, kname);
-        set_arg(k, 9, sums, kname);
+        set_arg(k, 7, cl_int(plan.width), kname);
+        set_arg(k, 8, cl_int(plan.height), kname);
+        set_arg(k, 9, plan.cx, kname);
+        set_arg(k, 10, plan.cy, kname);
+        set_arg(k, 11, sums, kname);
     } else {
         const cl_mem offsets = offsets_.get();
-        set_arg(k, 5, offsets, kname);
-        set_arg(k, 6, cl_int(plan.sample_count()), kname);
-        set_arg(k, 7, sums, kname);
+        set_arg(k, 7, offsets, kname);
+        set_arg(k, 8, cl_int(plan.sample_count()), kname);
+        set_arg(k, 9, sums, kname);
     }
     const std::size_t global = n * wg_size_, local = wg_size_;
     check(clEnqueueNDRangeKernel(queue_.get(), k, 1, nullptr, &global, &local, 0, nullptr, &e),

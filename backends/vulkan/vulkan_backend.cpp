@@ -12,6 +12,7 @@
 #include "../common/pow2.hpp"
 #include "ncc_score_subgroup.h"
 #include "sobel3x3.h"
+#include "trn/impl/cell_mask.hpp"
 #include "vulkan_backend_impl.hpp"
 
 namespace trn {
@@ -70,13 +71,14 @@ VulkanBackend::VulkanBackend(int index, const BackendOptions::Vulkan& options)
     const bool subgroups = ctx.physical().subgroup_arithmetic() && options.subgroups;
     const std::span<const std::uint32_t> ncc_code =
         subgroups ? std::span<const std::uint32_t>(ncc_score_subgroup) : std::span<const std::uint32_t>(ncc_score_shared);
-    // Bindings: sample table, affines, sums, map bands (bytes layout), map bands (quad layout).
+    // Bindings: sample table, affines, sums, map bands (bytes layout), map bands (quad layout), cell mask.
     using Kind = Binding::Kind;
     ncc_kernel_ = std::make_unique<Kernel>(
         ctx, *cache_, ncc_code, subgroups ? "ncc_score (subgroup reduction)" : "ncc_score (shared-memory reduction)",
         std::vector<Binding>{{Kind::StorageBuffer, 1}, {Kind::StorageBuffer, 1}, {Kind::StorageBuffer, 1},
-                             {Kind::StorageBuffer, kMaxMapChunks}, {Kind::UniformTexelBuffer, kMaxMapChunks}},
-        6 * sizeof(std::uint32_t));
+                             {Kind::StorageBuffer, kMaxMapChunks}, {Kind::UniformTexelBuffer, kMaxMapChunks},
+                             {Kind::StorageBuffer, 1}},
+        7 * sizeof(std::uint32_t));
     sobel_kernel_ = std::make_unique<Kernel>(ctx, *cache_, std::span<const std::uint32_t>(sobel3x3), "sobel3x3",
                                              std::vector<Binding>(3), 5 * sizeof(std::uint32_t));
     // Bytes one map band may hold: the storage-buffer range (bytes layout) or texel-buffer elements
@@ -169,10 +171,31 @@ double MapLayout::bytes() const {
     return total;
 }
 
-MapHandle VulkanBackend::do_upload_map(GrayView map, PhaseTimes* times) {
+MapHandle VulkanBackend::do_upload_map(GrayView map, const CellMask* mask, PhaseTimes* times) {
     Context& ctx = *context_;
     const std::size_t w = static_cast<std::size_t>(map.width), h = static_cast<std::size_t>(map.height);
-    auto handle = std::make_shared<VulkanMap>(this, context_, map.width, map.height);
+    auto handle = std::make_shared<VulkanMap>(this, context_, map.width, map.height, mask != nullptr);
+    if (mask) {  // one storage buffer, before the bands: a refusal costs no upload
+        const std::size_t bytes = mask->words.size() * sizeof(std::uint32_t);
+        if (bytes > ctx.limits().maxStorageBufferRange)
+            throw Error("upload_map: the no-data mask of map " + std::to_string(w) + "x" + std::to_string(h) + " takes " +
+                        std::to_string(bytes >> 20) + " MiB, more than one storage buffer on " + info_.name + " (" +
+                        std::to_string(ctx.limits().maxStorageBufferRange >> 20) + " MiB, maxStorageBufferRange)");
+        const auto t0 = Clock::now();
+        handle->cells = std::make_unique<Mirror>(ctx, "the no-data mask", VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+        handle->cells->ensure(bytes);
+        std::memcpy(handle->cells->host(), mask->words.data(), bytes);
+        const double host_ms = ms_since(t0);
+        VkCommandBuffer cmd = recorder_->begin();
+        recorder_->mark(0);
+        handle->cells->record_upload(cmd, bytes);
+        recorder_->mark(1);
+        barrier_after_upload();
+        recorder_->submit_and_wait("vkQueueSubmit (no-data mask upload)");
+        handle->cells->drop_staging();
+        handle->mask_words = static_cast<std::uint32_t>(mask->words_per_row);
+        if (times) times->upload_ms += host_ms + recorder_->elapsed_ms(0, 1);
+    }
     const MapLayout layout = map_layout(w, h, map_placement_, quad_maps_);
     const bool quads = layout.quads;
     const std::size_t rows_per_chunk = layout.rows_per_chunk, chunk_count = layout.chunk_count;
@@ -222,7 +245,7 @@ MapHandle VulkanBackend::do_upload_map(GrayView map, PhaseTimes* times) {
         if (quads) handle->views.push_back(std::make_unique<TexelView>(ctx, chunk->device(), VK_FORMAT_R32_UINT, layout.band_bytes(rows)));
         handle->chunks.push_back(std::move(chunk));
     }
-    if (times) times->upload_ms = host_ms + device_ms;
+    if (times) times->upload_ms += host_ms + device_ms;
     ctx.throw_on_validation_messages("upload_map");
     return handle;
 }

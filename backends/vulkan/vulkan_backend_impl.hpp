@@ -59,13 +59,15 @@ MapLayout map_layout(std::size_t width, std::size_t height, const MapPlacement& 
 // maxStorageBufferRange. Keeps the context alive so a map may outlive its backend object safely.
 class VulkanMap : public MapStorage {
 public:
-    VulkanMap(const Backend* owner, std::shared_ptr<Context> context, int width, int height)
-        : MapStorage(owner, width, height), context(std::move(context)) {}
+    VulkanMap(const Backend* owner, std::shared_ptr<Context> context, int width, int height, bool masked)
+        : MapStorage(owner, width, height, masked), context(std::move(context)) {}
     std::shared_ptr<Context> context;  // first member: destroyed last
     std::vector<std::unique_ptr<Mirror>> chunks;
     std::vector<std::unique_ptr<TexelView>> views;  // quad layout: one per band (destroyed before the bands)
     std::uint32_t rows_per_chunk = 0;
     bool quads = false;
+    std::unique_ptr<Mirror> cells;  // the cell mask (storage buffer) of a masked map
+    std::uint32_t mask_words = 0;   // its words per row
 };
 
 class VulkanBackend final : public Backend, public CopyBandwidthProbe {
@@ -77,7 +79,7 @@ public:
     void set_map_placement(const MapPlacement& p) { map_placement_ = p; }  // for tests; values must be > 0
 
 protected:
-    MapHandle do_upload_map(GrayView map, PhaseTimes* times) override;
+    MapHandle do_upload_map(GrayView map, const CellMask* mask, PhaseTimes* times) override;
     double do_map_bytes(std::int64_t width, std::int64_t height) const override {
         return map_layout(std::size_t(width), std::size_t(height), map_placement_, quad_maps_).bytes();
     }

@@ -13,8 +13,9 @@ namespace {
 struct ScorePush {  // matches the push_constant block of ncc_score.comp
     std::uint32_t map_width, map_height, rows_per_chunk, particle_count;
     float cx, cy;
+    std::uint32_t mask_words;
 };
-static_assert(sizeof(ScorePush) == 6 * 4);
+static_assert(sizeof(ScorePush) == 7 * 4);
 
 struct GroupSums {  // matches GroupSums in ncc_score.comp (std430): 64-bit sums as (low, high) words
     std::uint32_t n, unused;
@@ -70,7 +71,9 @@ void VulkanBackend::do_score(const MapStorage& storage, const ScoringPlan& plan,
 
     // Bindings 0..2, then binding 3's storage bands and binding 4's texel bands. Unused bands point
     // at the last real one; the layout the map does not use points at stand-ins.
-    std::array<VkBuffer, 3 + kMaxMapChunks> buffers{samples_->device(), affines_->device(), sums_->device()};
+    // Binding 5 (the cell mask) points at the sample table when the map has no no-data (never read).
+    std::array<VkBuffer, 4 + kMaxMapChunks> buffers{samples_->device(), affines_->device(), sums_->device()};
+    buffers[3 + kMaxMapChunks] = map.masked() ? map.cells->device() : samples_->device();
     std::array<VkBufferView, kMaxMapChunks> views{};
     for (std::uint32_t c = 0; c < kMaxMapChunks; ++c) {
         const std::size_t band = std::min<std::size_t>(c, map.chunks.size() - 1);
@@ -78,12 +81,12 @@ void VulkanBackend::do_score(const MapStorage& storage, const ScoringPlan& plan,
         views[c] = map.quads ? map.views[band]->handle() : unused_texel_view_->handle();
     }
     ncc_kernel_->bind(buffers, views);
-    // Specialization constants 0..6 of ncc_score.comp.
+    // Specialization constants 0..7 of ncc_score.comp.
     const VkPipeline pipeline = ncc_kernel_->pipeline(
         {score_group_size_, static_cast<std::uint32_t>(samples), static_cast<std::uint32_t>(map.chunks.size()),
-         per_group, static_cast<std::uint32_t>(plan.width), plan.dense ? 1u : 0u, map.quads ? 1u : 0u});
+         per_group, static_cast<std::uint32_t>(plan.width), plan.dense ? 1u : 0u, map.quads ? 1u : 0u, map.masked() ? 1u : 0u});
     const ScorePush push{static_cast<std::uint32_t>(map.width()), static_cast<std::uint32_t>(map.height()),
-                         map.rows_per_chunk, static_cast<std::uint32_t>(particles), plan.cx, plan.cy};
+                         map.rows_per_chunk, static_cast<std::uint32_t>(particles), plan.cx, plan.cy, map.mask_words};
     const std::uint32_t gx = static_cast<std::uint32_t>(std::min<std::size_t>(groups, lim.maxComputeWorkGroupCount[0]));
     const std::uint32_t gy = static_cast<std::uint32_t>((groups + gx - 1) / gx);
 

@@ -14,6 +14,9 @@
 // The sampling is branch-free: invalid samples (outside the map, or past the end of the template
 // row / sample list) read a safe map cell and add 0.
 //
+// A map with no-data comes with its cell mask (one bit per 2x2 cell, mask_words words per row);
+// mask_words = 0: no mask (cells then points at a one-word stand-in).
+//
 // Per particle the host uploads 8 floats: a, b, c, d, tx, ty (pose_to_affine) and 2 unused.
 // Per particle the kernel writes 6 longs: n, sum I, sum I^2, sum I*T, sum T, sum T^2.
 #include "trn_common.clh"
@@ -109,18 +112,29 @@ int8 gather8(__global const int* p, int8 i) {
 // round(f * 128) as int(f * 128 + 0.5f): fixed_point.hpp's weight(), 0..128.
 int8 weight8(float8 f) { return convert_int8(f * 128.0f + 0.5f); }
 
+// The no-data bits (trn/impl/cell_mask.hpp) of the cells at (x0, y0): -1 where the cell is valid.
+int8 cell_valid8(__global const uint* cells, int words_per_row, int8 x0, int8 y0) {
+    const int8 at = y0 * words_per_row + (x0 >> 5);
+    const uint8 words = (uint8)(cells[at.s0], cells[at.s1], cells[at.s2], cells[at.s3], cells[at.s4], cells[at.s5],
+                                cells[at.s6], cells[at.s7]);
+    return -as_int8((words >> as_uint8(x0 & 31)) & 1u);
+}
+
 // Adds the samples at offsets (du, dv) from the template centre with quantized values t to s,
-// skipping lanes that are outside the map or not set in `use` (all bits set = use the lane).
+// skipping lanes that are outside the map, on a cell with no-data (when mask_words > 0: the
+// cell mask's words per row) or not set in `use` (all bits set = use the lane).
 // always_inline: PoCL would otherwise keep it a call with the sums in memory.
 __attribute__((always_inline)) void add_samples8(Sums8* s, const Affine* A, float8 du, float8 dv, int8 t, int8 use,
-                                                 __global const uchar* map, int map_w, int map_h) {
+                                                 __global const uchar* map, int map_w, int map_h,
+                                                 __global const uint* cells, int mask_words) {
     // Exactly (tx + a*du) + b*dv, each operation rounded (FP_CONTRACT is off in trn_common.clh).
     const float8 px = (A->tx + A->a * du) + A->b * dv;
     const float8 py = (A->ty + A->c * du) + A->d * dv;
-    const int8 valid = use & (px >= 0.0f) & (py >= 0.0f) & (px <= (float)(map_w - 1)) & (py <= (float)(map_h - 1));
+    int8 valid = use & (px >= 0.0f) & (py >= 0.0f) & (px <= (float)(map_w - 1)) & (py <= (float)(map_h - 1));
     // At (0, 0) for invalid lanes so that every read stays in the map.
     const float8 sx = select((float8)0.0f, px, valid), sy = select((float8)0.0f, py, valid);
     const int8 x0 = min(convert_int8(sx), map_w - 2), y0 = min(convert_int8(sy), map_h - 2);
+    if (mask_words > 0) valid &= cell_valid8(cells, mask_words, x0, y0);
     const int8 wx = weight8(sx - convert_float8(x0)), wy = weight8(sy - convert_float8(y0));
     uchar16 top, bot;  // even bytes: left pixels, odd bytes: right pixels
     cell_pairs8(map, map_w, map_h, x0, y0, &top, &bot);
@@ -159,7 +173,8 @@ void reduce_and_store(const Total8* mine, __global long* out, int particle, __lo
 // whole strips are numbered row by row; when the width is not a multiple of 8, the partial strips
 // at the rows' ends follow (the branch stays out of the main loop).
 __kernel __attribute__((reqd_work_group_size(TRN_WG_SIZE, 1, 1)))
-void ncc_score_dense(__global const uchar* map, int map_w, int map_h, __global const float* affines,
+void ncc_score_dense(__global const uchar* map, int map_w, int map_h, __global const uint* cells, int mask_words,
+                     __global const float* affines,
                      __global const int* quantized, int templ_w, int templ_h, float cx, float cy,
                      __global long* out) {
     __local long red[6 * TRN_WG_SIZE];
@@ -177,7 +192,7 @@ void ncc_score_dense(__global const uchar* map, int map_w, int map_h, __global c
             for (int k = 0; k < TRN_CHUNK && v < templ_h; ++k) {
                 const float8 du = convert_float8(s * 8 + lane) - cx, dv = (float8)((float)v - cy);
                 const int8 t = vload8(s, quantized + (size_t)v * (size_t)templ_w);
-                add_samples8(&part, &A, du, dv, t, (int8)(-1), map, map_w, map_h);
+                add_samples8(&part, &A, du, dv, t, (int8)(-1), map, map_w, map_h, cells, mask_words);
                 s += step_s;
                 v += step_v;
                 if (s >= strips) s -= strips, ++v;
@@ -193,7 +208,7 @@ void ncc_score_dense(__global const uchar* map, int map_w, int map_h, __global c
             Sums8 part = sums8_zero();
             for (int v = v0; v < templ_h && v < v0 + TRN_CHUNK * TRN_WG_SIZE; v += TRN_WG_SIZE)
                 add_samples8(&part, &A, du, (float8)((float)v - cy), gather8(quantized + (size_t)v * (size_t)templ_w, uc), use,
-                             map, map_w, map_h);
+                             map, map_w, map_h, cells, mask_words);
             total8_add(&total, &part);
         }
     }
@@ -204,7 +219,8 @@ void ncc_score_dense(__global const uchar* map, int map_w, int map_h, __global c
 // same float operations as the dense kernel. Tile g holds samples 8g .. 8g+7; a partial last tile
 // is added by work item 0.
 __kernel __attribute__((reqd_work_group_size(TRN_WG_SIZE, 1, 1)))
-void ncc_score_sparse(__global const uchar* map, int map_w, int map_h, __global const float* affines,
+void ncc_score_sparse(__global const uchar* map, int map_w, int map_h, __global const uint* cells, int mask_words,
+                      __global const float* affines,
                       __global const int* quantized, __global const float2* offsets, int count,
                       __global long* out) {
     __local long red[6 * TRN_WG_SIZE];
@@ -218,7 +234,7 @@ void ncc_score_sparse(__global const uchar* map, int map_w, int map_h, __global 
         Sums8 part = sums8_zero();
         for (int k = 0; k < TRN_CHUNK && g < tiles; ++k, g += TRN_WG_SIZE) {
             const float16 o = vload16(g, xy);
-            add_samples8(&part, &A, o.even, o.odd, vload8(g, quantized), (int8)(-1), map, map_w, map_h);
+            add_samples8(&part, &A, o.even, o.odd, vload8(g, quantized), (int8)(-1), map, map_w, map_h, cells, mask_words);
         }
         total8_add(&total, &part);
     }
@@ -230,7 +246,7 @@ void ncc_score_sparse(__global const uchar* map, int map_w, int map_h, __global 
         const float8 du = (float8)(o0.x, o1.x, o2.x, o3.x, o4.x, o5.x, o6.x, o7.x);
         const float8 dv = (float8)(o0.y, o1.y, o2.y, o3.y, o4.y, o5.y, o6.y, o7.y);
         Sums8 part = sums8_zero();
-        add_samples8(&part, &A, du, dv, gather8(quantized, kc), k < count, map, map_w, map_h);
+        add_samples8(&part, &A, du, dv, gather8(quantized, kc), k < count, map, map_w, map_h, cells, mask_words);
         total8_add(&total, &part);
     }
     reduce_and_store(&total, out, particle, red);

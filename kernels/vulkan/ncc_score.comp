@@ -27,6 +27,7 @@
 //         [c*R, c*R + R] (one row of overlap, so the 2x2 footprint of any sample lies in one band).
 //         Used when quads (4x the memory of bytes) would exceed kQuadMapBudget (256 MiB) or
 //         need more bands than that.
+// No-data (MASKED): a sample on a cell with an invalid pixel is left out like one off the map.
 #extension GL_GOOGLE_include_directive : require
 #ifdef TRN_SUBGROUP_REDUCE
 #extension GL_KHR_shader_subgroup_basic : require
@@ -44,6 +45,7 @@ layout(constant_id = 3) const uint PARTICLES_PER_GROUP = 1;  // P
 layout(constant_id = 4) const uint TEMPLATE_WIDTH = 1;
 layout(constant_id = 5) const bool DENSE = true;             // sample k is template pixel k
 layout(constant_id = 6) const bool QUAD_MAP = true;
+layout(constant_id = 7) const bool MASKED = false;           // the map has no-data (binding 5)
 layout(local_size_x_id = 0) in;
 
 // Quantized template values T[S] (int32 bits), then (sparse plans only) the template pixel index
@@ -54,6 +56,9 @@ layout(std430, binding = 1) readonly buffer Affines { float affines[]; };  // a 
 layout(std430, binding = 2) writeonly buffer Sums { uvec2 sums[]; };
 layout(std430, binding = 3) readonly buffer MapChunk { uint words[]; } map_chunks[TRN_MAX_MAP_CHUNKS];  // bytes layout
 layout(binding = 4) uniform usamplerBuffer map_quads[TRN_MAX_MAP_CHUNKS];  // quad layout (R32_UINT)
+// No-data: one bit per 2x2 cell, set where all four pixels are valid (trn/impl/cell_mask.hpp),
+// mask_words words per row of cells. Read only when MASKED.
+layout(std430, binding = 5) readonly buffer CellMask { uint cells[]; };
 
 layout(push_constant) uniform Push {
     uint map_width;
@@ -61,6 +66,7 @@ layout(push_constant) uniform Push {
     uint rows_per_chunk;  // R above
     uint particle_count;
     float cx, cy;         // template centre
+    uint mask_words;      // words per row of the cell mask (MASKED)
 } pc;
 
 // Word i of band c. MAP_CHUNKS is a specialization constant, so with one band the selection folds away.
@@ -122,6 +128,13 @@ uint map_value(float px, float py) {
     uint top = q.x * (128u - wx) + q.y * wx;
     uint bot = q.z * (128u - wx) + q.w * wx;
     return (top * (128u - wy) + bot * wy + 64u) >> 7u;
+}
+
+// Whether the cell sampled at (px, py), both inside the map, holds only valid pixels.
+bool cell_valid(float px, float py) {
+    uint x0 = min(uint(px), pc.map_width - 2u);
+    uint y0 = min(uint(py), pc.map_height - 2u);
+    return ((cells[y0 * pc.mask_words + (x0 >> 5u)] >> (x0 & 31u)) & 1u) != 0u;
 }
 
 // 64-bit integers as (low, high) uint pairs.
@@ -191,7 +204,9 @@ void main() {
                 precise float py = (ty[p] + c[p] * du) + d[p] * dv;
                 bool valid = px >= 0.0 && py >= 0.0 && px <= xmax && py <= ymax;
                 // Clamped so that invalid samples still read inside the map; a valid position is unchanged.
-                uint j = map_value(clamp(px, 0.0, xmax), clamp(py, 0.0, ymax));
+                float qx = clamp(px, 0.0, xmax), qy = clamp(py, 0.0, ymax);
+                if (MASKED) valid = valid && cell_valid(qx, qy);
+                uint j = map_value(qx, qy);
                 // Invalid samples add zeros (selects rather than multiplies by 0 / 1: measured faster on lavapipe).
                 j = valid ? j : 0u;
                 n[p] += valid ? 1u : 0u;

@@ -17,5 +17,6 @@ struct Case {
 std::vector<Case> ncc_cases();
 std::vector<Case> sobel_cases();
 std::vector<Case> error_cases();
+std::vector<Case> mask_cases();
 
 }  // namespace trn::conformance

@@ -42,13 +42,14 @@ private:
 inline bool same_bits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 // Runs the same scoring on both backends and compares every particle for equality (scores bit for
-// bit, counts, flags). Returns the dut scores.
-inline std::vector<ParticleScore> score_and_compare(Backend& dut, Backend& ref, GrayView map, const TemplateView& templ,
-                                                    std::span<const Pose> poses, const ScoreOptions& options) {
+// bit, counts, flags). `valid`: the map's no-data mask (empty: none). Returns the dut scores.
+inline std::vector<ParticleScore> score_and_compare(Backend& dut, Backend& ref, GrayView map, GrayView valid,
+                                                    const TemplateView& templ, std::span<const Pose> poses,
+                                                    const ScoreOptions& options) {
     const ScoringPlan plan = make_scoring_plan(templ, options);
     GuardedScores got(poses.size()), want(poses.size());
-    dut.score(dut.upload_map(map), plan, poses, got.out());
-    ref.score(ref.upload_map(map), plan, poses, want.out());
+    dut.score(dut.upload_map(map, valid), plan, poses, got.out());
+    ref.score(ref.upload_map(map, valid), plan, poses, want.out());
     EXPECT_TRUE(got.guards_intact()) << dut.info().name << " wrote outside the score output";
     int reported = 0;
     for (std::size_t i = 0; i < poses.size(); ++i) {
@@ -67,6 +68,11 @@ inline std::vector<ParticleScore> score_and_compare(Backend& dut, Backend& ref, 
     }
     if (reported > 5) ADD_FAILURE() << "... " << reported << " mismatching particles in all";
     return {got.scores().begin(), got.scores().end()};
+}
+
+inline std::vector<ParticleScore> score_and_compare(Backend& dut, Backend& ref, GrayView map, const TemplateView& templ,
+                                                    std::span<const Pose> poses, const ScoreOptions& options) {
+    return score_and_compare(dut, ref, map, GrayView{}, templ, poses, options);
 }
 
 }  // namespace trn::conformance

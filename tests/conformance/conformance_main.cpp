@@ -117,7 +117,8 @@ int main(int argc, char** argv) {
     }
 
     static std::vector<trn::conformance::Case> cases;
-    for (auto&& group : {trn::conformance::ncc_cases(), trn::conformance::sobel_cases(), trn::conformance::error_cases()})
+    for (auto&& group : {trn::conformance::ncc_cases(), trn::conformance::sobel_cases(), trn::conformance::error_cases(),
+                        trn::conformance::mask_cases()})
         cases.insert(cases.end(), group.begin(), group.end());
 
     const trn::BackendOptions base = trn::test::backend_options_from_environment();

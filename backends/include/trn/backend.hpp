@@ -31,19 +31,24 @@ struct DeviceInfo {
 };
 
 class Backend;
+struct CellMask;  // trn/impl/cell_mask.hpp (backend implementers)
 
 // A map uploaded to one backend. Release it by dropping the handle.
 class MapStorage {
 public:
-    MapStorage(const Backend* owner, int width, int height) : owner_(owner), width_(width), height_(height) {}
+    MapStorage(const Backend* owner, int width, int height, bool masked = false)
+        : owner_(owner), width_(width), height_(height), masked_(masked) {}
     virtual ~MapStorage() = default;
     int width() const { return width_; }
     int height() const { return height_; }
     const Backend* owner() const { return owner_; }
+    // True when the map was uploaded with no-data (some bilinear cell holds an invalid pixel).
+    bool masked() const { return masked_; }
 
 private:
     const Backend* owner_;
     int width_, height_;
+    bool masked_;
 };
 using MapHandle = std::shared_ptr<const MapStorage>;
 
@@ -55,6 +60,12 @@ public:
     // Copies an 8-bit grey map to the backend: from 2x2 up to trn::limits::kMaxMapPixels (2^30)
     // pixels with sides up to kMaxImageSide (65536); a device may refuse less, naming its limit.
     MapHandle upload_map(GrayView map, PhaseTimes* times = nullptr);
+    // The same with no-data: `valid` is the map's size, and pixel (x, y) is valid where
+    // valid.at(x, y) != 0. A sample whose bilinear 2x2 cell holds an invalid pixel is left out of
+    // every sum like a sample off the map (scoring.hpp); an empty view (data == nullptr) means every
+    // pixel is valid, and so does a mask without an invalid pixel: the scores are then the bits of
+    // the unmasked call. A mask that leaves no cell valid is refused.
+    MapHandle upload_map(GrayView map, GrayView valid, PhaseTimes* times = nullptr);
 
     // Bytes this backend's copy of a width x height map takes, in the layout it really uses (its
     // device memory for GPUs, host memory for CPU devices): what upload_map checks against half of
@@ -73,8 +84,10 @@ public:
     void sobel(GrayView src, Int16View gx, Int16View gy, PhaseTimes* times = nullptr);
 
 protected:
-    virtual MapHandle do_upload_map(GrayView map, PhaseTimes* times) = 0;
-    // Defined beside the backend's map layout, from the same arithmetic that sizes its allocation.
+    // `mask` is null when every cell is valid; otherwise it outlives only the call (copy what is kept).
+    virtual MapHandle do_upload_map(GrayView map, const CellMask* mask, PhaseTimes* times) = 0;
+    // Defined beside the backend's map layout, from the same arithmetic that sizes its allocation
+    // (without the mask: CellMask::bytes is added for a masked map).
     virtual double do_map_bytes(std::int64_t width, std::int64_t height) const = 0;
     virtual void do_score(const MapStorage& map, const ScoringPlan& plan, std::span<const Pose> poses,
                           std::span<ParticleScore> out, PhaseTimes* times) = 0;

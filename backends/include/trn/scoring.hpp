@@ -11,7 +11,10 @@
 //   px = tx + a*du + b*dv, py = ty + c*du + d*dv in float without fused multiply-add, so all
 //   backends sample the very same positions.
 //   Map pixel centres are at integer coordinates; sampling is bilinear. A sample is valid when
-//   0 <= px <= mapW-1 and 0 <= py <= mapH-1; other samples are skipped and counted.
+//   0 <= px <= mapW-1 and 0 <= py <= mapH-1 and, for a map uploaded with no-data, the four pixels
+//   of its bilinear cell (x0..x0+1, y0..y0+1 below; whatever their weights) are all valid; other
+//   samples are skipped, so valid_samples counts the samples used and min_valid_fraction flags a
+//   particle mostly over no-data as it flags one mostly off the map.
 //
 // Exact integer arithmetic (the same bits on every backend; constants in fixed_point.hpp):
 //   x0 = min(floor(px), mapW-2), fx = px - x0 (exact in float), wx = int(fx*128 + 0.5f) in 0..128
