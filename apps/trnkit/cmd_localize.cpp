@@ -143,7 +143,7 @@ void localize(const LocalizeArgs& a) {
                   << a.seed << "\n";
     };
     hooks.progress = progress_bar;
-    const localize::LocalizationResult result = localize::run_localization(spec, map.image.view(), mpp, *backend, hooks);
+    const localize::LocalizationResult result = localize::run_localization(spec, map, *backend, hooks);
     const bool has_latlon = in.to_latlon && !result.rows.empty();
 
     localize::ReportOptions report;
@@ -153,7 +153,8 @@ void localize(const LocalizeArgs& a) {
                       {"start", a.start.empty() && a.start_latlon.empty() ? "first row's MapX,MapY" : !a.start.empty() ? "--start " + a.start : "--start-latlon " + a.start_latlon},
                       {"start_heading", std::isnan(a.start_heading_deg) ? "first magnetometer reading" : "--start-heading-deg"},
                       {"flight_json", in.has_flight_json ? "used" : "absent (camera, map and resolution from options)"},
-                      {"georeference", in.georeference.empty() ? "none" : in.georeference}};
+                      {"georeference", in.georeference.empty() ? "none" : in.georeference},
+                      {"map_no_data", map.valid.width > 0 ? "masked (alpha, GeoTIFF mask or --nodata)" : "none"}};
     report.numbers = {{"init_radius_m", cfg.init_radius_m}, {"reinit_radius_m", cfg.reinit_radius_m},
                       {"start_x", result.run.start_x}, {"start_y", result.run.start_y}, {"particles", static_cast<double>(a.particles)},
                       {"min_particles", static_cast<double>(a.min_particles)}, {"max_particles", static_cast<double>(a.max_particles)},
@@ -179,6 +180,10 @@ void add_localize_command(CLI::App& app) {
     cmd->add_option("--map", a->inputs.map,
                     "Localization map image (default: the one flight.json names); a .tif/.tiff is read as a GeoTIFF (GDAL): "
                     "resolution and latitude/longitude from its georeference");
+    cmd->add_option("--nodata", a->inputs.nodata,
+                    "Map grey level (0..255) that marks no-data where every colour channel has it; transparent pixels "
+                    "(alpha 0) and a GeoTIFF's nodata value or mask are no-data anyway. Samples on no-data are left out of the scores")
+        ->transform(whole_in(0, 255));
     cmd->add_option("--mpp", a->inputs.metres_per_pixel, "Map resolution, metres per pixel (default: flight.json or the GeoTIFF)")->check(real_in(0, 1000, Open::low));
     cmd->add_option("--hfov-deg", a->inputs.hfov_deg, "Camera horizontal field of view, degrees (default: flight.json)")
         ->check(real_in(1, 170, Open::both));

@@ -42,6 +42,8 @@ void add_register_command(CLI::App& app) {
     struct Args {
         std::string map, verify, out, backend = "cpu", air_out;
         std::uint64_t seed = 1;
+        int nodata = -1;
+        double mpp = 0.5, hfov_deg = 60, fps = 0.5;  // what --air-out's flight.json says (the first real flight's)
         bool force = false;
         std::vector<std::string> frames;
         double radius = 160, min_scale = 0.3, max_scale = 1.5;
@@ -59,12 +61,22 @@ void add_register_command(CLI::App& app) {
         ->check(real_in(4, 400));
     cmd->add_option("--min-scale", a->min_scale, "Smallest map px per frame px searched")->capture_default_str()->check(real_in(0.05, 4));
     cmd->add_option("--max-scale", a->max_scale, "Largest map px per frame px searched")->capture_default_str()->check(real_in(0.05, 4));
+    cmd->add_option("--nodata", a->nodata,
+                    "Map grey level (0..255) marking no-data where every colour channel has it (transparent pixels are no-data anyway)")
+        ->transform(whole_in(0, 255));
     cmd->add_option("--anchor", a->anchor, "Approximate pose of the first frame X Y YAW_DEG SCALE: skips the global search")
         ->expected(4)
         ->check(real_in(-1e6, 1e6));
     cmd->add_option("--air-out", a->air_out,
                     "Also write an AIR folder of the frames with these poses as truth and simulated odometry and magnetometer "
                     "(only when every pose passes the check)");
+    cmd->add_option("--mpp", a->mpp, "Map resolution, metres per pixel, written into --air-out's flight.json")
+        ->capture_default_str()
+        ->check(real_in(0, 1000, Open::low));
+    cmd->add_option("--hfov-deg", a->hfov_deg, "Camera horizontal field of view for --air-out (turns the found scales into altitudes)")
+        ->capture_default_str()
+        ->check(real_in(1, 170, Open::both));
+    cmd->add_option("--fps", a->fps, "Frame rate for --air-out's time stamps")->capture_default_str()->check(real_in(0, 1000, Open::low));
     cmd->add_flag("--force", a->force, "Write --air-out into a non-empty folder that is not an earlier register output (its other files stay)");
     cmd->add_option("--seed", a->seed, "Seed of the simulated odometry and magnetometer of --air-out")->capture_default_str()->check(any_seed());
     cmd->callback([a] {
@@ -79,6 +91,8 @@ void add_register_command(CLI::App& app) {
         if (!a->air_out.empty()) io::check_output_folder(a->air_out, "register", a->force, "--air-out");
         const std::vector<reg::PoseRow> rows = a->verify.empty() ? std::vector<reg::PoseRow>{} : reg::read_pose_rows(a->verify);
         const GrayImage map = load_gray(a->map);
+        const GrayImage valid = load_validity(a->map, a->nodata >= 0 ? std::optional<int>(a->nodata) : std::nullopt);
+        const GrayView valid_view = valid.width > 0 ? valid.view() : GrayView{};
         std::vector<GrayImage> frames;
         std::vector<std::string> names;
         for (const std::string& f : a->frames) {
@@ -86,7 +100,7 @@ void add_register_command(CLI::App& app) {
             names.push_back(std::filesystem::path(f).filename().string());
         }
         auto backend = default_registry().create(a->backend, backend_options_from_environment());
-        const MapHandle handle = backend->upload_map(map.view());
+        const MapHandle handle = backend->upload_map(map.view(), valid_view);
 
         std::string csv = kHeader;
         int failures = 0;
@@ -122,7 +136,7 @@ void add_register_command(CLI::App& app) {
                 o.anchor_hint = Pose{static_cast<float>(a->anchor[0]), static_cast<float>(a->anchor[1]),
                                      static_cast<float>(a->anchor[2] * kPi / 180), static_cast<float>(a->anchor[3])};
             }
-            const reg::Registration r = reg::register_frames(*backend, map, frames, names, o);
+            const reg::Registration r = reg::register_frames(*backend, map, frames, names, o, valid_view);
             for (std::size_t k = 0; k + 1 < frames.size(); ++k)
                 std::fprintf(stderr, "motion %s -> %s: rotation %6.2f deg, fitted scale %.4f (not used), shift %6.1f %6.1f px, %d inliers\n",
                              names[k].c_str(), names[k + 1].c_str(), r.motions[k].next_to_this.angle() * 180 / kPi,
@@ -140,6 +154,7 @@ void add_register_command(CLI::App& app) {
         else io::write_file_atomic(a->out, csv);
         if (!a->air_out.empty() && !failures) {
             reg::RealAirOptions o;
+            o.metres_per_pixel = a->mpp, o.hfov_deg = a->hfov_deg, o.fps = a->fps;
             o.odometry.seed = a->seed;
             o.magnetometer.seed = a->seed + 1;
             io::open_output_folder(a->air_out, "register", a->force, "--air-out", io::Rerun::ReplacesPrevious);

@@ -36,10 +36,15 @@ void add_score_command(CLI::App& app) {
     struct Args {
         std::string map, templ, poses, backend = "cpu", sampling = "dense", out;
         double min_valid = 0.9;
+        int nodata = -1;  // -1: only the map's alpha
     };
     auto a = std::make_shared<Args>();
     auto* cmd = app.add_subcommand("score", "Score particle poses against a camera template on a map (CSV out)");
     cmd->add_option("--map", a->map, "Map image (grey or colour)")->required();
+    cmd->add_option("--nodata", a->nodata,
+                    "Map grey level (0..255) marking no-data where every colour channel has it; transparent map pixels are "
+                    "no-data anyway. Samples on no-data are left out, as samples off the map are")
+        ->transform(whole_in(0, 255));
     cmd->add_option("--template", a->templ, "Camera frame / template image")->required();
     cmd->add_option("--poses", a->poses, "CSV with x,y,yaw,scale per line (map pixels, radians)")->required();
     cmd->add_option("-b,--backend", a->backend, "Backend: cpu-ref, cpu, opencl[:N|:name], vulkan[:N|:name]")->capture_default_str();
@@ -55,6 +60,7 @@ void add_score_command(CLI::App& app) {
         options.sampling = parse_sampling(a->sampling);
         options.min_valid_fraction = a->min_valid;
         const GrayImage map = load_gray(a->map);
+        const GrayImage valid = load_validity(a->map, a->nodata >= 0 ? std::optional<int>(a->nodata) : std::nullopt);
         const GrayImage templ = load_gray(a->templ);
         const std::vector<Pose> poses = read_poses_csv(a->poses);
         if (poses.empty()) throw Error(a->poses + ": no poses to score");
@@ -63,7 +69,7 @@ void add_score_command(CLI::App& app) {
         std::vector<ParticleScore> scores(poses.size());
         PhaseTimes t;
         try {
-            const MapHandle handle = backend->upload_map(map.view());
+            const MapHandle handle = backend->upload_map(map.view(), valid.width > 0 ? valid.view() : GrayView{});
             backend->score(handle, templ.view(), poses, options, scores, &t);
         } catch (const BackendUnavailable&) {
             throw;

@@ -7,10 +7,11 @@ namespace trn::cli {
 namespace {
 
 // One table for every command: a field has one flag wherever it appears.
-constexpr std::array<std::pair<const char*, const char*>, 28> kFlags{{
+constexpr std::array<std::pair<const char*, const char*>, 29> kFlags{{
     {"dataset", "--dataset"},
     {"flight.folder", "--dataset"},
     {"map", "--map"},
+    {"nodata", "--nodata"},
     {"metres_per_pixel", "--mpp"},
     {"hfov_deg", "--hfov-deg"},
     {"focal_px", "--focal-px"},

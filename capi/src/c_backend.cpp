@@ -45,17 +45,30 @@ trn_status trn_backend_info(const trn_backend* backend, trn_device_info* out) {
     });
 }
 
-trn_status trn_map_upload(trn_backend* backend, const uint8_t* pixels, int width, int height, ptrdiff_t stride, trn_map** out) {
-    return guarded(__func__, [&] {
+// Both uploads; errors name the function the caller called.
+static trn_status upload_map(const char* function, trn_backend* backend, const uint8_t* pixels, int width, int height, ptrdiff_t stride,
+                             const uint8_t* valid, ptrdiff_t valid_stride, trn_map** out) {
+    return guarded(function, [&] {
         require_pointer(out, "out");
         *out = nullptr;
         require_pointer(backend, "backend");
         require_image(pixels, width, height, stride, "pixels");
+        if (valid) require_image(valid, width, height, valid_stride, "valid");
         auto map = std::make_unique<trn_map>();
         map->backend = backend->impl;
-        map->handle = backend->impl->upload_map(trn::GrayView{pixels, width, height, stride});
+        map->handle = backend->impl->upload_map(trn::GrayView{pixels, width, height, stride},
+                                                valid ? trn::GrayView{valid, width, height, valid_stride} : trn::GrayView{});
         *out = map.release();
     });
+}
+
+trn_status trn_map_upload(trn_backend* backend, const uint8_t* pixels, int width, int height, ptrdiff_t stride, trn_map** out) {
+    return upload_map(__func__, backend, pixels, width, height, stride, nullptr, 0, out);
+}
+
+trn_status trn_map_upload_masked(trn_backend* backend, const uint8_t* pixels, int width, int height, ptrdiff_t stride,
+                                 const uint8_t* valid, ptrdiff_t valid_stride, trn_map** out) {
+    return upload_map(__func__, backend, pixels, width, height, stride, valid, valid_stride, out);
 }
 
 void trn_map_destroy(trn_map* map) { delete map; }

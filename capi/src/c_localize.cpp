@@ -100,9 +100,11 @@ trn_observation trn_observation_default(void) {
     return o;
 }
 
-trn_status trn_localizer_create(trn_backend* backend, const uint8_t* map, int width, int height, ptrdiff_t stride, double metres_per_pixel,
-                                const trn_localizer_config* config, trn_localizer** out) {
-    return guarded(__func__, [&] {
+// Both constructors; errors name the function the caller called.
+static trn_status create_localizer(const char* function, trn_backend* backend, const uint8_t* map, int width, int height, ptrdiff_t stride,
+                                   const uint8_t* valid, ptrdiff_t valid_stride, double metres_per_pixel,
+                                   const trn_localizer_config* config, trn_localizer** out) {
+    return guarded(function, [&] {
         require_pointer(out, "out");
         *out = nullptr;
         require_pointer(backend, "backend");
@@ -111,12 +113,26 @@ trn_status trn_localizer_create(trn_backend* backend, const uint8_t* map, int wi
         if (width <= 0 || height <= 0 || stride < width)
             throw InvalidArgument("map " + std::to_string(width) + "x" + std::to_string(height) + " with stride " + std::to_string(stride) +
                                   " is not a valid image");
+        if (valid && valid_stride < width)
+            throw InvalidArgument("valid: stride " + std::to_string(valid_stride) + " is smaller than the map width " + std::to_string(width));
         auto l = std::make_unique<trn_localizer>();
         l->backend = backend->impl;
         l->impl = std::make_unique<trn::localize::Localizer>(trn::GrayView{map, width, height, stride}, metres_per_pixel, *l->backend,
-                                                             to_config(*config));
+                                                             to_config(*config),
+                                                             valid ? trn::GrayView{valid, width, height, valid_stride} : trn::GrayView{});
         *out = l.release();
     });
+}
+
+trn_status trn_localizer_create(trn_backend* backend, const uint8_t* map, int width, int height, ptrdiff_t stride, double metres_per_pixel,
+                                const trn_localizer_config* config, trn_localizer** out) {
+    return create_localizer(__func__, backend, map, width, height, stride, nullptr, 0, metres_per_pixel, config, out);
+}
+
+trn_status trn_localizer_create_masked(trn_backend* backend, const uint8_t* map, int width, int height, ptrdiff_t stride,
+                                       const uint8_t* valid, ptrdiff_t valid_stride, double metres_per_pixel,
+                                       const trn_localizer_config* config, trn_localizer** out) {
+    return create_localizer(__func__, backend, map, width, height, stride, valid, valid_stride, metres_per_pixel, config, out);
 }
 
 trn_status trn_localizer_step(trn_localizer* localizer, const trn_observation* observation, trn_estimate* out) {

@@ -104,11 +104,23 @@ cv::Mat mosaic(const std::vector<cv::Mat>& frames, const std::vector<Similarity>
 }
 
 // Coarse search of the whole map over yaw and scale: best few distinct anchors.
-std::vector<Candidate> global_candidates(const GrayImage& map, const std::vector<GrayImage>& frames,
+// No-data filled with the mean grey of the valid pixels: matchTemplate has no image mask, and a
+// white or black no-data wall would otherwise correlate with the frames' bright or dark parts.
+cv::Mat filled_map(const GrayImage& map, GrayView valid) {
+    const cv::Mat m = as_mat(map);
+    if (!valid.data) return m;
+    const cv::Mat v(valid.height, valid.width, CV_8UC1, const_cast<std::uint8_t*>(valid.data), static_cast<std::size_t>(valid.stride));
+    const cv::Mat invalid = v == 0;
+    cv::Mat out = m.clone();
+    out.setTo(cv::mean(m, ~invalid)[0], invalid);
+    return out;
+}
+
+std::vector<Candidate> global_candidates(const GrayImage& map, GrayView valid, const std::vector<GrayImage>& frames,
                                          const std::vector<Similarity>& chain, const RegisterOptions& o) {
     constexpr double q = 4;  // map downscale of the coarse search
     cv::Mat small;
-    cv::resize(as_mat(map), small, cv::Size(), 1 / q, 1 / q, cv::INTER_AREA);
+    cv::resize(filled_map(map, valid), small, cv::Size(), 1 / q, 1 / q, cv::INTER_AREA);
     small.convertTo(small, CV_32F);
     std::vector<cv::Mat> mats;
     for (const GrayImage& f : frames) mats.push_back(as_mat(f));
@@ -234,15 +246,15 @@ ScaledTemplate template_for_scale(const GrayImage& frame, double scale) {
 }
 
 Registration register_frames(Backend& backend, const GrayImage& map, const std::vector<GrayImage>& frames,
-                             const std::vector<std::string>& names, const RegisterOptions& o) {
+                             const std::vector<std::string>& names, const RegisterOptions& o, GrayView valid) {
     if (frames.size() < 2) throw Error("register: need at least two consecutive frames");
     Registration r;
     r.motions = relative_motions(frames, names);
     r.chain = chain(r.motions);
-    const MapHandle handle = backend.upload_map(map.view());
+    const MapHandle handle = backend.upload_map(map.view(), valid);
 
     const std::vector<Candidate> candidates =
-        o.anchor_hint ? std::vector<Candidate>{{*o.anchor_hint, 0}} : global_candidates(map, frames, r.chain, o);
+        o.anchor_hint ? std::vector<Candidate>{{*o.anchor_hint, 0}} : global_candidates(map, valid, frames, r.chain, o);
     if (candidates.empty()) throw Error("register: the chained frames do not fit inside the map at any searched scale");
     std::vector<Templ> templs;
     for (std::size_t k = 0; k < frames.size(); ++k)

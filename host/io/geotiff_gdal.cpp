@@ -80,7 +80,9 @@ void read_band(GDALDataset& ds, int b, cv::Mat& out, const std::string& path) {
 
 bool geotiff_supported() { return true; }
 
-GeoTiff read_geotiff(const std::string& path) {
+GeoTiff read_geotiff(const std::string& path, std::optional<int> nodata) {
+    if (nodata && (*nodata < 0 || *nodata > 255))
+        throw Error(path + ": no-data value " + std::to_string(*nodata) + " is not an 8-bit grey level (0..255)");
     // A local regular file only: no /vsicurl/ or other virtual path, no "GTIFF_DIR:2:x.tif" or
     // other sub-dataset syntax (neither names a file), no FIFO or device.
     if (path.rfind("/vsi", 0) == 0) throw Error(path + ": GDAL virtual file systems (/vsi...) are not read; give a local file");
@@ -130,17 +132,39 @@ GeoTiff read_geotiff(const std::string& path) {
     g.crs_wkt = wkt ? wkt : "";
     CPLFree(wkt);
 
-    cv::Mat grey;
+    cv::Mat grey, rgb[3];
     if (bands == 1) {
         read_band(*ds, 1, grey, path);
+        rgb[0] = grey;
     } else {
-        cv::Mat rgb[3], merged;
+        cv::Mat merged;
         for (int b = 0; b < 3; ++b) read_band(*ds, b + 1, rgb[b], path);
         cv::merge(rgb, 3, merged);
         cv::cvtColor(merged, grey, cv::COLOR_RGB2GRAY);
     }
     g.image.width = width, g.image.height = height;
     g.image.pixels.assign(grey.datastart, grey.dataend);
+
+    // No-data: GDAL's mask of band 1 (alpha band, nodata value or internal mask), then `nodata`.
+    cv::Mat valid;
+    GDALRasterBand* first = ds->GetRasterBand(1);
+    if ((first->GetMaskFlags() & GMF_ALL_VALID) == 0) {
+        valid.create(height, width, CV_8UC1);
+        CPLErrorReset();
+        if (first->GetMaskBand()->RasterIO(GF_Read, 0, 0, width, height, valid.data, width, height, GDT_Byte, 0, 0) != CE_None)
+            throw Error(path + ": cannot read the no-data mask" + last_gdal_error());
+        valid.setTo(255, valid != 0);
+    }
+    if (nodata) {
+        cv::Mat same = rgb[0] == *nodata;
+        for (int b = 1; b < 3 && bands > 1; ++b) same &= rgb[b] == *nodata;
+        if (valid.empty()) valid = cv::Mat(height, width, CV_8UC1, cv::Scalar(255));
+        valid.setTo(0, same);
+    }
+    if (!valid.empty()) {
+        g.valid.width = width, g.valid.height = height;
+        g.valid.pixels.assign(valid.datastart, valid.dataend);
+    }
     return g;
 }
 

@@ -11,7 +11,7 @@ namespace {
 }  // namespace
 
 bool geotiff_supported() { return false; }
-GeoTiff read_geotiff(const std::string& path) { no_gdal(path); }
+GeoTiff read_geotiff(const std::string& path, std::optional<int>) { no_gdal(path); }
 
 struct GeoReference::Impl {};
 GeoReference::GeoReference(const GeoTiff&, const std::string& source) { no_gdal(source); }

@@ -82,6 +82,58 @@ GrayImage decode_gray(const std::string& path) {
     return img;
 }
 
+GrayImage decode_validity(const std::string& path, std::optional<int> nodata) {
+    std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "rb"));
+    if (!file) throw Error(path + ": cannot open (" + std::strerror(errno) + ")");
+    png_byte signature[8] = {};
+    if (std::fread(signature, 1, 8, file.get()) != 8 || png_sig_cmp(signature, 0, 8) != 0) not_png(path);
+    PngErrors errors;
+    png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &errors, on_error, on_warning);
+    png_infop info = png ? png_create_info_struct(png) : nullptr;
+    if (!info) {
+        png_destroy_read_struct(&png, nullptr, nullptr);
+        throw Error(path + ": out of memory starting the PNG decoder");
+    }
+    GrayImage valid;
+    std::vector<png_byte> rgba;
+    std::vector<png_bytep> rows;
+    if (setjmp(errors.jump)) {
+        png_destroy_read_struct(&png, &info, nullptr);
+        throw Error(path + ": cannot decode PNG (" + errors.message + ")");
+    }
+    png_init_io(png, file.get());
+    png_set_sig_bytes(png, 8);
+    png_read_info(png, info);
+    const int color_type = png_get_color_type(png, info);
+    const bool alpha = (color_type & PNG_COLOR_MASK_ALPHA) != 0 || png_get_valid(png, info, PNG_INFO_tRNS);
+    if (!alpha && !nodata) {
+        png_destroy_read_struct(&png, &info, nullptr);
+        return {};
+    }
+    // Every layout as 8-bit RGBA (opaque where the file has no alpha).
+    png_set_expand(png);
+    png_set_strip_16(png);
+    png_set_gray_to_rgb(png);
+    png_set_add_alpha(png, 0xFF, PNG_FILLER_AFTER);
+    png_set_interlace_handling(png);
+    png_read_update_info(png, info);
+    valid.width = static_cast<int>(png_get_image_width(png, info));
+    valid.height = static_cast<int>(png_get_image_height(png, info));
+    if (png_get_rowbytes(png, info) != 4 * static_cast<std::size_t>(valid.width)) png_error(png, "unexpected row layout after conversion to RGBA");
+    rgba.resize(4 * std::size_t(valid.width) * valid.height);
+    rows.resize(valid.height);
+    for (int y = 0; y < valid.height; ++y) rows[y] = rgba.data() + 4 * std::size_t(y) * valid.width;
+    png_read_image(png, rows.data());
+    png_read_end(png, nullptr);
+    png_destroy_read_struct(&png, &info, nullptr);
+    valid.pixels.assign(std::size_t(valid.width) * valid.height, 255);
+    for (std::size_t i = 0; i < valid.pixels.size(); ++i) {
+        const png_byte* p = rgba.data() + 4 * i;
+        if (p[3] == 0 || (nodata && p[0] == *nodata && p[1] == *nodata && p[2] == *nodata)) valid.pixels[i] = 0;
+    }
+    return valid;
+}
+
 namespace {
 void append_bytes(png_structp png, png_bytep data, png_size_t length) {
     auto* out = static_cast<std::vector<std::uint8_t>*>(png_get_io_ptr(png));

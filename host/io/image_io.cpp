@@ -22,6 +22,15 @@ GrayImage load_gray(const std::string& path) {
     return img;
 }
 
+GrayImage load_validity(const std::string& path, std::optional<int> nodata) {
+    if (nodata && (*nodata < 0 || *nodata > 255))
+        throw Error(path + ": no-data value " + std::to_string(*nodata) + " is not an 8-bit grey level (0..255)");
+    check_image_file(path);
+    GrayImage valid = io::detail::decode_validity(path, nodata);
+    if (valid.width > 0) limits::check_image(path + ": image", valid.width, valid.height, limits::kMaxMapPixels, limits::kLoadBytesPerPixel);
+    return valid;
+}
+
 // Encoded in memory (format from the extension), then written whole: a full disk or a killed run
 // never leaves a cut image under the final name.
 void save_gray(const std::string& path, GrayView image) {

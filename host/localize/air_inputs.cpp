@@ -81,8 +81,10 @@ AirInputs resolve_air_inputs(const AirInputOptions& o) {
     if (o.fps > 0) in.fps = o.fps;
     in.camera.validate();
 
+    if (o.nodata < -1 || o.nodata > 255) throw FieldError("nodata", "must be a grey level 0..255, got " + std::to_string(o.nodata));
+    const std::optional<int> nodata = o.nodata >= 0 ? std::optional<int>(o.nodata) : std::nullopt;
     if (geotiff) {
-        io::GeoTiff g = io::read_geotiff(in.map_path);
+        io::GeoTiff g = io::read_geotiff(in.map_path, nodata);
         if (o.metres_per_pixel > 0 && std::fabs(o.metres_per_pixel - g.metres_per_pixel) > 1e-6 * g.metres_per_pixel)
             throw FieldError("metres_per_pixel", number(o.metres_per_pixel) + " contradicts " + in.map_path + ", whose geotransform gives " +
                                                      number(g.metres_per_pixel) + " m/px; leave `metres_per_pixel` out");
@@ -98,8 +100,9 @@ AirInputs resolve_air_inputs(const AirInputOptions& o) {
         in.to_map_pixel = [geo](double lat, double lon) { return geo->to_pixel(lat, lon); };
         in.map.metres_per_pixel = g.metres_per_pixel;
         in.map.image = std::move(g.image);
+        in.map.valid = std::move(g.valid);
     } else {
-        in.map = sim::load_map(in.map_path, o.metres_per_pixel > 0 ? o.metres_per_pixel : info.metres_per_pixel, info.origin);
+        in.map = sim::load_map(in.map_path, o.metres_per_pixel > 0 ? o.metres_per_pixel : info.metres_per_pixel, info.origin, nodata);
         if (info.origin) {
             sim::Map frame;  // resolution and origin only: the lambdas outlive no image
             frame.metres_per_pixel = in.map.metres_per_pixel, frame.origin = info.origin;

@@ -40,7 +40,7 @@ void LocalizerConfig::validate() const {
     if (scoring.template_width < 0) throw Error("localizer config: scoring.template_width must be >= 0 (0: full width)");
 }
 
-Localizer::Localizer(GrayView map, double metres_per_pixel, Backend& backend, const LocalizerConfig& config)
+Localizer::Localizer(GrayView map, double metres_per_pixel, Backend& backend, const LocalizerConfig& config, GrayView valid)
     : config_(config), mpp_(metres_per_pixel), backend_(backend) {
     if (!(metres_per_pixel > 0) || !std::isfinite(metres_per_pixel))
         throw Error("localizer: metres_per_pixel must be > 0, got " + number(metres_per_pixel));
@@ -48,7 +48,7 @@ Localizer::Localizer(GrayView map, double metres_per_pixel, Backend& backend, co
     config_.validate();
     config_.filter.metres_per_pixel = metres_per_pixel;
     config_.filter.validate();
-    scorer_ = std::make_unique<filter::BackendScorer>(backend, map, config_.scoring);
+    scorer_ = std::make_unique<filter::BackendScorer>(backend, map, config_.scoring, valid);
     filter_ = std::make_unique<filter::ParticleFilter>(*scorer_, config_.filter);
 }
 

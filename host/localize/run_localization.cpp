@@ -90,15 +90,16 @@ LocalizationResult run_localization(filter::FlightSource& source, Localizer& loc
     return result;
 }
 
-LocalizationResult run_localization(const LocalizationSpec& spec, GrayView map, double metres_per_pixel, Backend& backend,
-                                    const RunHooks& hooks) {
+namespace {
+LocalizationResult run_on_map(const LocalizationSpec& spec, GrayView map, GrayView valid, double metres_per_pixel, Backend& backend,
+                              const RunHooks& hooks) {
     if (!(spec.rate_hz > 0) || !std::isfinite(spec.rate_hz)) throw FieldError("rate_hz", "must be > 0");
     LocalizerConfig cfg = spec.localizer;
     LocalizationResult result;
     RunInfo info;  // what the flight adds to the Localizer's part of the RunInfo: stride, frames, rate
     auto finish = [&](filter::FlightSource& recorded, filter::VisualOdometrySource& visual) {
         if (hooks.started) hooks.started(info);
-        Localizer localizer(map, metres_per_pixel, backend, cfg);
+        Localizer localizer(map, metres_per_pixel, backend, cfg, valid);
         const bool use_visual = spec.odometry == OdometryKind::Visual;
         result = run_localization(use_visual ? static_cast<filter::FlightSource&>(visual) : recorded, localizer, hooks.progress);
         result.run.stride = info.stride, result.run.frames = info.frames, result.run.filter_rate_hz = info.filter_rate_hz;
@@ -152,6 +153,16 @@ LocalizationResult run_localization(const LocalizationSpec& spec, GrayView map, 
             r.estimate_lat = ll.latitude_deg, r.estimate_lon = ll.longitude_deg;
         }
     return result;
+}
+}  // namespace
+
+LocalizationResult run_localization(const LocalizationSpec& spec, GrayView map, double metres_per_pixel, Backend& backend,
+                                    const RunHooks& hooks) {
+    return run_on_map(spec, map, GrayView{}, metres_per_pixel, backend, hooks);
+}
+
+LocalizationResult run_localization(const LocalizationSpec& spec, const sim::Map& map, Backend& backend, const RunHooks& hooks) {
+    return run_on_map(spec, map.image.view(), map.valid_view(), map.metres_per_pixel, backend, hooks);
 }
 
 }  // namespace trn::localize

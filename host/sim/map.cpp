@@ -7,11 +7,12 @@
 
 namespace trn::sim {
 
-Map load_map(const std::string& path, double metres_per_pixel, std::optional<GeoOrigin> origin) {
+Map load_map(const std::string& path, double metres_per_pixel, std::optional<GeoOrigin> origin, std::optional<int> nodata) {
     if (!(metres_per_pixel > 0) || !std::isfinite(metres_per_pixel))
         throw Error(path + ": map resolution " + std::to_string(metres_per_pixel) + " m/px must be > 0");
     Map map;
     map.image = load_gray(path);
+    map.valid = load_validity(path, nodata);
     map.metres_per_pixel = metres_per_pixel;
     map.origin = origin;
     return map;

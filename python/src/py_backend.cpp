@@ -3,6 +3,7 @@
 // names (keywords, docstrings, warnings) are python/trnkit/_backend.py's; these are the primitives.
 #include "py_backend.hpp"
 
+#include <optional>
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
@@ -109,8 +110,9 @@ pyb::object sobel(PyBackend& self, const pyb::handle& image, bool want_times) {
     return pyb::make_tuple(gx, gy);
 }
 
-pyb::object upload_map(const std::shared_ptr<PyBackend>& self, const pyb::handle& image, bool want_times) {
+pyb::object upload_map(const std::shared_ptr<PyBackend>& self, const pyb::handle& image, const pyb::handle& valid, bool want_times) {
     const BorrowedGray map = gray_view(image, "map");
+    const std::optional<BorrowedGray> mask = valid.is_none() ? std::nullopt : std::optional<BorrowedGray>(gray_view(valid, "valid"));
     auto out = std::make_shared<PyMap>();
     out->backend = self;
     out->width = map.view.width, out->height = map.view.height;
@@ -118,7 +120,7 @@ pyb::object upload_map(const std::shared_ptr<PyBackend>& self, const pyb::handle
     {
         pyb::gil_scoped_release nogil;
         std::lock_guard lock(self->mutex);
-        out->handle = self->open_backend().upload_map(map.view, &times);
+        out->handle = self->open_backend().upload_map(map.view, mask ? mask->view : GrayView{}, &times);
         std::erase_if(self->maps, [](const std::weak_ptr<PyMap>& m) { return m.expired(); });
         self->maps.push_back(out);
     }
@@ -247,7 +249,7 @@ void register_backend(pyb::module_& m) {
             std::lock_guard lock(b.mutex);
             return !b.impl;
         })
-        .def("_upload_map", &upload_map, pyb::arg("map"), pyb::arg("times"))
+        .def("_upload_map", &upload_map, pyb::arg("map"), pyb::arg("valid"), pyb::arg("times"))
         .def("_score", &score, pyb::arg("map"), pyb::arg("template"), pyb::arg("poses"), pyb::arg("sampling"),
              pyb::arg("min_valid_fraction"), pyb::arg("out"), pyb::arg("times"))
         .def("_sobel", &sobel, pyb::arg("image"), pyb::arg("times"))

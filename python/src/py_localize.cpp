@@ -203,11 +203,11 @@ pyb::dict localize_flight(const std::string& dataset, const std::string& map, co
                           std::optional<double> start_heading_rad, const std::string& odometry, double max_tilt_deg, int template_width,
                           double sparse, std::uint64_t seed, const std::string& conversion, const std::string& sampling,
                           std::size_t min_particles, std::size_t max_particles, std::size_t particles, double init_radius_m,
-                          double reinit_radius_m, const std::string& out, bool plots) {
+                          double reinit_radius_m, const std::string& out, bool plots, int nodata) {
     if (odometry != "recorded" && odometry != "visual") throw pyb::value_error("odometry: 'recorded' (the folder's SvoX/SvoY) or 'visual', got '" + odometry + "'");
     return naming_keywords([&] {
         localize::AirInputOptions io;
-        io.dataset = dataset, io.map = map, io.metres_per_pixel = metres_per_pixel, io.hfov_deg = hfov_deg, io.fps = fps;
+        io.dataset = dataset, io.map = map, io.metres_per_pixel = metres_per_pixel, io.hfov_deg = hfov_deg, io.fps = fps, io.nodata = nodata;
         const localize::AirInputs in = localize::resolve_air_inputs(io);
         localize::LocalizationSpec spec;
         spec.flight = localize::AirFolderFlight{dataset, in.camera, in.fps, max_tilt_deg};
@@ -221,7 +221,7 @@ pyb::dict localize_flight(const std::string& dataset, const std::string& map, co
         {
             pyb::gil_scoped_release release;
             std::lock_guard<std::mutex> lock(backend->mutex);  // the whole flight on this backend
-            r = localize::run_localization(spec, in.map.image.view(), in.map.metres_per_pixel, backend->open_backend());
+            r = localize::run_localization(spec, in.map, backend->open_backend());
             if (!out.empty()) {
                 localize::ReportOptions report;
                 report.owner = "localize", report.folder_name = "out", report.plots = plots, report.plot_title = in.scenario;
@@ -251,7 +251,8 @@ Built once from the map (a 2-D uint8 array, grey), its resolution and a backend;
 camera frame. Conventions: map pixels (x east, y south, pixel centres at integers); yaw and
 headings in RADIANS, clockwise from north; odometry in metres east/north since the previous step.
 Same inputs, same seed: the same estimates as `trnkit localize`, bit for bit.)")
-        .def(pyb::init([](const pyb::object& map, double metres_per_pixel, std::shared_ptr<PyBackend> backend, std::pair<double, double> start,
+        .def(pyb::init([](const pyb::object& map, double metres_per_pixel, std::shared_ptr<PyBackend> backend, const pyb::object& valid,
+                          std::pair<double, double> start,
                           std::optional<double> start_heading_rad, std::optional<double> camera_hfov_deg, double max_tilt_deg,
                           int template_width, double sparse, std::uint64_t seed, const std::string& conversion, const std::string& sampling,
                           std::size_t min_particles, std::size_t max_particles, std::size_t particles, double init_radius_m,
@@ -261,20 +262,22 @@ Same inputs, same seed: the same estimates as `trnkit localize`, bit for bit.)")
                      make_config(start, start_heading_rad, camera_hfov_deg, max_tilt_deg, template_width, sparse, seed, conversion, sampling,
                                  min_particles, max_particles, particles, init_radius_m, reinit_radius_m);
                  const BorrowedGray view = gray_view(map, "map");
+                 const std::optional<BorrowedGray> mask =
+                     valid.is_none() ? std::nullopt : std::optional<BorrowedGray>(gray_view(valid, "valid"));
                  if (!backend) throw pyb::type_error("backend: a trnkit.Backend");
                  l->backend = backend;
                  pyb::gil_scoped_release release;  // the map upload
                  std::lock_guard<std::mutex> lock(backend->mutex);
                  Backend& b = backend->open_backend();
                  naming_keywords([&] {
-                     l->impl = std::make_unique<localize::Localizer>(view.view, metres_per_pixel, b, c);
+                     l->impl = std::make_unique<localize::Localizer>(view.view, metres_per_pixel, b, c, mask ? mask->view : GrayView{});
                      return 0;
                  });
                  std::erase_if(backend->users, [](const std::weak_ptr<BackendUser>& u) { return u.expired(); });
                  backend->users.push_back(l);
                  return l;
              }),
-             "map"_a, "metres_per_pixel"_a, "backend"_a, pyb::kw_only(), "start"_a, "start_heading_rad"_a = pyb::none(),
+             "map"_a, "metres_per_pixel"_a, "backend"_a, pyb::kw_only(), "valid"_a = pyb::none(), "start"_a, "start_heading_rad"_a = pyb::none(),
              "camera_hfov_deg"_a = pyb::none(), "max_tilt_deg"_a = 10.0, "template_width"_a = 160, "sparse"_a = 1.0, "seed"_a = 1,
              "conversion"_a = "logistic:0.2", "sampling"_a = "kld", "min_particles"_a = 100, "max_particles"_a = 2000, "particles"_a = 1000,
              "init_radius_m"_a = 300.0, "reinit_radius_m"_a = 300.0,
@@ -305,6 +308,14 @@ score_ms, step_ms.)")
         "_load_gray",
         [](const std::string& path) { return gray_array(load_gray(path).view()); },
         "path"_a, "An image file (PNG, JPEG, TIFF ...) as a 2-D uint8 array, grey.");
+    m.def(
+        "_load_validity",
+        [](const std::string& path, std::optional<int> nodata) -> pyb::object {
+            const GrayImage valid = load_validity(path, nodata);
+            if (valid.width == 0) return pyb::none();
+            return gray_array(valid.view());
+        },
+        "path"_a, "nodata"_a, "An image file's no-data as a 2-D uint8 array (255 valid, 0 not), or None when every pixel is valid.");
 
     m.def("_read_air_folder", &read_air_folder, "folder"_a,
           R"(The rows of an AIR flight folder (metadata.csv + frames) as a robot's sensors would feed a Localizer:
@@ -316,7 +327,7 @@ altitude_agl_m, attitude).)");
           "hfov_deg"_a = 0.0, "fps"_a = 0.0, "rate_hz"_a = 5.0, "start"_a = pyb::none(), "start_heading_rad"_a = pyb::none(),
           "odometry"_a = "recorded", "max_tilt_deg"_a = 10.0, "template_width"_a = 160, "sparse"_a = 1.0, "seed"_a = 1,
           "conversion"_a = "logistic:0.2", "sampling"_a = "kld", "min_particles"_a = 100, "max_particles"_a = 2000, "particles"_a = 1000,
-          "init_radius_m"_a = 50.0, "reinit_radius_m"_a = 300.0, "out"_a = "", "plots"_a = false,
+          "init_radius_m"_a = 50.0, "reinit_radius_m"_a = 300.0, "out"_a = "", "plots"_a = false, "nodata"_a = -1,
           R"(Localizes a whole AIR folder, as `trnkit localize` does (same defaults: a 50 m start prior).
 map: the map image (default: the one flight.json names); metres_per_pixel, hfov_deg, fps: when
 flight.json does not say (0: not given); start: (x, y) map pixels (None: the first row's truth);

@@ -66,9 +66,11 @@ class Backend:
     @property
     def closed(self) -> bool: ...
     @overload
-    def upload_map(self, map: npt.NDArray[np.uint8], *, return_times: Literal[False] = False) -> Map: ...
+    def upload_map(self, map: npt.NDArray[np.uint8], *, valid: npt.NDArray[np.uint8] | None = None,
+                   return_times: Literal[False] = False) -> Map: ...
     @overload
-    def upload_map(self, map: npt.NDArray[np.uint8], *, return_times: Literal[True]) -> tuple[Map, PhaseTimes]: ...
+    def upload_map(self, map: npt.NDArray[np.uint8], *, valid: npt.NDArray[np.uint8] | None = None,
+                   return_times: Literal[True]) -> tuple[Map, PhaseTimes]: ...
     @overload
     def score(self, map: Map, template: npt.NDArray[Any] | Plan, poses: npt.ArrayLike, sampling: Sampling | None = None,
               min_valid_fraction: float = 0.9, *, out: npt.NDArray[np.void] | None = None,
@@ -154,7 +156,8 @@ def integrate_energy(log: str | os.PathLike[str] | PowerTrace, markers: str | os
 Estimate = dict[str, Any]  # x, y, yaw, best_*, spread_m, particles, off_map, frame_missing, ..., step_ms
 
 class Localizer(AbstractContextManager["Localizer"]):
-    def __init__(self, map: npt.NDArray[np.uint8], metres_per_pixel: float, backend: Backend | str = "cpu", *, start: tuple[float, float],
+    def __init__(self, map: npt.NDArray[np.uint8], metres_per_pixel: float, backend: Backend | str = "cpu", *,
+                 valid: npt.NDArray[np.uint8] | None = None, start: tuple[float, float],
                  start_heading_rad: float | None = None, camera_hfov_deg: float | None = None, max_tilt_deg: float = 10.0,
                  template_width: int = 160, sparse: float = 1.0, seed: int = 1, conversion: str = "logistic:0.2",
                  sampling: Literal["kld", "importance", "rejection"] = "kld", min_particles: int = 100, max_particles: int = 2000,
@@ -165,10 +168,11 @@ class Localizer(AbstractContextManager["Localizer"]):
     def close(self) -> None: ...
 
 def load_gray(path: str | os.PathLike[str]) -> npt.NDArray[np.uint8]: ...
+def load_validity(path: str | os.PathLike[str], nodata: int | None = None) -> npt.NDArray[np.uint8] | None: ...
 def read_air_folder(folder: str | os.PathLike[str]) -> list[dict[str, Any]]: ...
 def localize(*, dataset: str, map: str = "", backend: Backend | str = "cpu", metres_per_pixel: float = 0.0, hfov_deg: float = 0.0,
              fps: float = 0.0, rate_hz: float = 5.0, start: tuple[float, float] | None = None, start_heading_rad: float | None = None,
              odometry: Literal["recorded", "visual"] = "recorded", max_tilt_deg: float = 10.0, template_width: int = 160,
              sparse: float = 1.0, seed: int = 1, conversion: str = "logistic:0.2", sampling: str = "kld", min_particles: int = 100,
              max_particles: int = 2000, particles: int = 1000, init_radius_m: float = 50.0, reinit_radius_m: float = 300.0,
-             out: str = "", plots: bool = False) -> dict[str, Any]: ...
+             out: str = "", plots: bool = False, nodata: int | None = None) -> dict[str, Any]: ...

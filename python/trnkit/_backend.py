@@ -209,14 +209,17 @@ class Backend(_trnkit.Backend):
         except Error as e:
             raise type(e)(_keyword_message(str(e))) from None
 
-    def upload_map(self, map, *, return_times: bool = False) -> Map:
+    def upload_map(self, map, *, valid=None, return_times: bool = False) -> Map:
         """Copies a map to the backend and returns its handle, to score many batches against.
 
         map: 2-D uint8 array (height, width), the orthophoto's grey levels; read in place when its
         rows are contiguous (any row stride, e.g. a slice of a larger array), else copied first.
-        Map pixel centres are at integer coordinates (x = column, y = row). return_times=True
+        Map pixel centres are at integer coordinates (x = column, y = row). valid: the map's no-data,
+        a 2-D uint8 array of the same shape, non-zero where a pixel is valid (trnkit.load_validity
+        reads it from a file's alpha); a sample whose 2x2 bilinear cell touches an invalid pixel is
+        left out of the scores like one off the map. None: every pixel valid. return_times=True
         returns (map, PhaseTimes)."""
-        got = self._upload_map(map, return_times)
+        got = self._upload_map(map, valid, return_times)
         return (got[0], _times(got[1])) if return_times else got
 
     def score(self, map: Map, template, poses, sampling: Sampling | None = None, min_valid_fraction: float = 0.9, *,

@@ -17,7 +17,8 @@ __all__ = ["Localizer", "load_gray", "localize", "read_air_folder"]
 class Localizer:
     """The online DPC-PFL localizer, built once and stepped once per camera frame.
 
-    map: 2-D uint8 array (grey orthophoto); metres_per_pixel: its resolution; backend: a
+    map: 2-D uint8 array (grey orthophoto); valid: its no-data (2-D uint8, same shape, non-zero
+    valid; trnkit.load_validity) or None; metres_per_pixel: its resolution; backend: a
     trnkit.Backend (its keywords, e.g. threads=, cache_dir=, apply) or a spec string "cpu-ref", "cpu",
     "opencl[:N]", "vulkan[:N]" (a backend made and owned by the localizer; never a silent fallback).
     start: (x, y) map pixels, the last known position (required). start_heading_rad: centre of the
@@ -33,7 +34,7 @@ class Localizer:
 
     Use it in a `with` block or call close() to release the map and the backend."""
 
-    def __init__(self, map, metres_per_pixel, backend="cpu", *, start, start_heading_rad=None, camera_hfov_deg=None,
+    def __init__(self, map, metres_per_pixel, backend="cpu", *, valid=None, start, start_heading_rad=None, camera_hfov_deg=None,
                  max_tilt_deg=10.0, template_width=160, sparse=1.0, seed=1, conversion="logistic:0.2", sampling="kld",
                  min_particles=100, max_particles=2000, particles=1000, init_radius_m=300.0, reinit_radius_m=300.0):
         if start_heading_rad is not None and abs(start_heading_rad) > 2 * math.pi:
@@ -43,7 +44,7 @@ class Localizer:
         if isinstance(backend, str):
             backend = self._own_backend = Backend(backend)
         self._impl = _trnkit._Localizer(
-            map, metres_per_pixel, backend, start=tuple(start), start_heading_rad=start_heading_rad, camera_hfov_deg=camera_hfov_deg,
+            map, metres_per_pixel, backend, valid=valid, start=tuple(start), start_heading_rad=start_heading_rad, camera_hfov_deg=camera_hfov_deg,
             max_tilt_deg=max_tilt_deg, template_width=template_width, sparse=sparse, seed=seed, conversion=conversion,
             sampling=sampling, min_particles=min_particles, max_particles=max_particles, particles=particles,
             init_radius_m=init_radius_m, reinit_radius_m=reinit_radius_m)
@@ -86,6 +87,12 @@ def load_gray(path):
     return _trnkit._load_gray(path)
 
 
+def load_validity(path, nodata=None):
+    """An image file's no-data as a 2-D uint8 array (255 valid, 0 where alpha is 0 or, with nodata
+    0..255, every colour channel equals it), or None when every pixel is valid: the map's `valid`."""
+    return _trnkit._load_validity(path, nodata)
+
+
 def read_air_folder(folder):
     """The rows of an AIR flight folder (metadata.csv + frames) as a robot's sensors would feed a Localizer.
 
@@ -99,7 +106,7 @@ def read_air_folder(folder):
 def localize(*, dataset, map="", backend="cpu", metres_per_pixel=0.0, hfov_deg=0.0, fps=0.0, rate_hz=5.0, start=None,
              start_heading_rad=None, odometry="recorded", max_tilt_deg=10.0, template_width=160, sparse=1.0, seed=1,
              conversion="logistic:0.2", sampling="kld", min_particles=100, max_particles=2000, particles=1000, init_radius_m=50.0,
-             reinit_radius_m=300.0, out="", plots=False):
+             reinit_radius_m=300.0, out="", plots=False, nodata=None):
     """Localizes a whole AIR folder as `trnkit localize` does (same defaults: a 50 m start prior).
 
     dataset: the AIR folder; map: the map image (default: the one flight.json names); backend: a
@@ -108,7 +115,8 @@ def localize(*, dataset, map="", backend="cpu", metres_per_pixel=0.0, hfov_deg=0
     rate_hz: filter steps per second; start: (x, y) map pixels (None: the first row's ground truth);
     start_heading_rad: RADIANS (None: the first heading); odometry: "recorded" (the folder's
     SvoX/SvoY) or "visual" (from the frames); out: a folder for localization.csv and summary.json
-    ("" none; plots=True adds the gnuplot plots). The other keywords are Localizer's.
+    ("" none; plots=True adds the gnuplot plots); nodata: a map grey level (0..255) marking no-data
+    besides the map's transparency (None: alpha only). The other keywords are Localizer's.
 
     Returns {"rows": dict of NumPy columns (frame, time_s, distance_m, truth_x, truth_y, odometry_x,
     odometry_y, estimate_x, estimate_y, estimate_yaw, error_m, odometry_error_m, particles,
@@ -121,7 +129,7 @@ def localize(*, dataset, map="", backend="cpu", metres_per_pixel=0.0, hfov_deg=0
                                  odometry=odometry, max_tilt_deg=max_tilt_deg, template_width=template_width, sparse=sparse, seed=seed,
                                  conversion=conversion, sampling=sampling, min_particles=min_particles, max_particles=max_particles,
                                  particles=particles, init_radius_m=init_radius_m, reinit_radius_m=reinit_radius_m, out=out,
-                                 plots=plots)
+                                 plots=plots, nodata=-1 if nodata is None else nodata)
     finally:
         if own is not None:
             own.close()

@@ -152,6 +152,56 @@ static void test_scoring(const char* spec) {
     trn_map_destroy(map);
 }
 
+/* ---- no-data --------------------------------------------------------------------------- */
+
+/* The left 60 columns and a square hole are no-data: scores where the patch avoids them equal the
+ * unmasked ones, scores over them use fewer samples, and every backend gives cpu-ref's bits. */
+static void test_masked(const char* spec) {
+    enum { VALID_STRIDE = MAP_W + 3 };
+    static uint8_t valid[MAP_H * VALID_STRIDE];
+    trn_backend *backend = NULL, *ref = NULL;
+    trn_map *masked = NULL, *plain = NULL, *ref_masked = NULL, *refused = NULL;
+    trn_plan* plan = NULL;
+    trn_score_options o = trn_score_options_default();
+    trn_template t = templ_u8_view();
+    trn_score got[N_POSES], unmasked[N_POSES], want[N_POSES];
+    trn_localizer* localizer = NULL;
+    trn_localizer_config config = trn_localizer_config_default();
+    int x, y, fewer = 0;
+    size_t i;
+    for (y = 0; y < MAP_H; ++y)
+        for (x = 0; x < VALID_STRIDE; ++x) valid[y * VALID_STRIDE + x] = (uint8_t)(x < 60 || (x >= 150 && x < 170 && y >= 20 && y < 40) ? 0 : 255);
+    CHECK_OK(trn_backend_create(spec, &backend));
+    CHECK_OK(trn_backend_create("cpu-ref", &ref));
+    if (!backend || !ref) return;
+    CHECK_OK(trn_map_upload_masked(backend, map_pixels, MAP_W, MAP_H, MAP_STRIDE, valid, VALID_STRIDE, &masked));
+    CHECK_OK(trn_map_upload_masked(backend, map_pixels, MAP_W, MAP_H, MAP_STRIDE, NULL, 0, &plain));
+    CHECK_OK(trn_map_upload_masked(ref, map_pixels, MAP_W, MAP_H, MAP_STRIDE, valid, VALID_STRIDE, &ref_masked));
+    o.min_valid_fraction = 0.0;
+    CHECK_OK(trn_plan_create(&t, &o, &plan));
+    CHECK_OK(trn_score_poses(backend, masked, plan, poses, N_POSES, got, NULL));
+    CHECK_OK(trn_score_poses(backend, plain, plan, poses, N_POSES, unmasked, NULL));
+    CHECK_OK(trn_score_poses(ref, ref_masked, plan, poses, N_POSES, want, NULL));
+    CHECK(same_scores(got, want, N_POSES, spec), "%s: masked scores differ from cpu-ref's", spec);
+    CHECK(same_scores(got, unmasked, 1, spec), "%s: pose 0 avoids the no-data but its score changed", spec);
+    for (i = 0; i < N_POSES; ++i) {
+        CHECK(got[i].valid_samples <= unmasked[i].valid_samples, "%s: pose %zu uses more samples with the mask", spec, i);
+        fewer += got[i].valid_samples < unmasked[i].valid_samples;
+    }
+    CHECK(fewer > 3, "%s: only %d poses lost samples to the no-data", spec, fewer);
+    CHECK_FAILS(trn_map_upload_masked(backend, map_pixels, MAP_W, MAP_H, MAP_STRIDE, valid, 10, &refused), TRN_ERR_INVALID_ARGUMENT,
+                "trn_map_upload_masked: valid stride 10 is smaller than its width 200");
+    config.start_x = 120, config.start_y = 80;
+    CHECK_OK(trn_localizer_create_masked(backend, map_pixels, MAP_W, MAP_H, MAP_STRIDE, valid, VALID_STRIDE, 1.0, &config, &localizer));
+    trn_localizer_destroy(localizer);
+    trn_plan_destroy(plan);
+    trn_map_destroy(masked);
+    trn_map_destroy(plain);
+    trn_map_destroy(ref_masked);
+    trn_backend_destroy(backend);
+    trn_backend_destroy(ref);
+}
+
 /* ---- Sobel ------------------------------------------------------------------------------- */
 
 static int reflect101(int i, int n) { return i < 0 ? -i : i >= n ? 2 * n - 2 - i : i; }
@@ -467,6 +517,7 @@ int main(int argc, char** argv) {
         printf("test_capi: scoring and Sobel on %s (%s)\n", info.name, info.device);
         test_scoring(info.name);
         test_sobel(info.name);
+        test_masked(info.name);
     }
     trn_device_list_destroy(list);
     test_errors();

@@ -11,6 +11,7 @@
 #include <opencv2/imgproc.hpp>
 #include <random>
 
+#include "../common/validity_reference.hpp"
 #include "trn/error.hpp"
 #include "trn/io/image_io.hpp"
 
@@ -75,6 +76,9 @@ TEST(DeviceKitPng, EveryColourTypeAndDepthReadsAsOpenCvReadsIt) {
     ASSERT_TRUE(cv::imwrite(bilevel, b, {cv::IMWRITE_PNG_BILEVEL, 1}));
     expect_same_as_opencv(bilevel);
 }
+
+// No-data (alpha 0, --nodata levels) as the normal build reads it (tests/unit/test_load_validity.cpp).
+TEST(DeviceKitPng, NoDataReadsAsOpenCvReadsIt) { trn::test::check_validity_cases(temp_dir().string()); }
 
 TEST(DeviceKitPng, WrittenPngsReadBackExactly) {
     const cv::Mat m = noise(21, 34, CV_8UC1, 5);

@@ -127,3 +127,39 @@ def test_maps_are_read_in_place_when_rows_are_contiguous():
         tracemalloc.stop()
     assert peaks["contiguous"] < 100_000 and peaks["strided"] < 100_000, peaks
     assert peaks["column-major"] >= 6_000_000, peaks  # the copy is seen, so the check can fail
+
+
+@pytest.mark.parametrize("family", ["cpu", "opencl", "vulkan"])
+def test_no_data_mask(family):
+    """valid= leaves samples on no-data out, as cpu-ref does, bit for bit; all-valid is no mask."""
+    b, ref = backend_or_skip(family), trnkit.Backend("cpu-ref")
+    valid = np.full(MAP.shape, 255, np.uint8)
+    valid[:, :90] = 0
+    valid[200:240, 250:300] = 0
+    p = poses()
+    got = b.score(b.upload_map(MAP, valid=valid), TEMPLATE, p, min_valid_fraction=0.0)
+    want = ref.score(ref.upload_map(MAP, valid=valid), TEMPLATE, p, min_valid_fraction=0.0)
+    plain = b.score(b.upload_map(MAP), TEMPLATE, p, min_valid_fraction=0.0)
+    assert got.tobytes() == want.tobytes()
+    assert (got["valid_samples"] <= plain["valid_samples"]).all()
+    assert (got["valid_samples"] < plain["valid_samples"]).sum() > 20
+    assert got[0].tobytes() == plain[0].tobytes()  # the template's own place has no no-data
+    everything = b.score(b.upload_map(MAP, valid=np.ones(MAP.shape, np.uint8)), TEMPLATE, p, min_valid_fraction=0.0)
+    assert everything.tobytes() == plain.tobytes()
+    with pytest.raises(trnkit.Error, match="validity mask 10x10 differs from the map 400x300"):
+        b.upload_map(MAP, valid=np.ones((10, 10), np.uint8))
+
+
+def test_load_validity_reads_alpha(tmp_path):
+    import os
+    data = os.environ.get("TRN_SHARED_DATA", "")
+    mosaic = os.path.join(data, "realflight2", "orthomosaic.png")
+    if not data or not os.path.exists(mosaic):
+        pytest.skip("TRN_SHARED_DATA/realflight2 not found")
+    valid = trnkit.load_validity(mosaic)
+    grey = trnkit.load_gray(mosaic)
+    assert valid.shape == grey.shape and valid.dtype == np.uint8
+    share = (valid == 0).mean()
+    assert 0.3 < share < 0.6, share  # the README says 46 % no-data
+    assert trnkit.load_validity(os.path.join(data, "orthophoto.png")) is None  # RGB: no alpha, no mask
+    assert (trnkit.load_validity(os.path.join(data, "orthophoto.png"), nodata=0) is not None)

@@ -80,6 +80,11 @@ TRN_C_API trn_status trn_backend_info(const trn_backend* backend, trn_device_inf
 /* Copies an 8-bit grey map (row stride in bytes, >= width) to the backend. */
 TRN_C_API trn_status trn_map_upload(trn_backend* backend, const uint8_t* pixels, int width, int height, ptrdiff_t stride,
                                     trn_map** out);
+/* The same with no-data: `valid` (valid_stride bytes per row) is the map's size, non-zero where a
+ * pixel is valid; a sample whose 2x2 bilinear cell touches an invalid pixel is left out of every
+ * score like one off the map. valid = NULL: every pixel valid (trn_map_upload). */
+TRN_C_API trn_status trn_map_upload_masked(trn_backend* backend, const uint8_t* pixels, int width, int height, ptrdiff_t stride,
+                                           const uint8_t* valid, ptrdiff_t valid_stride, trn_map** out);
 TRN_C_API void trn_map_destroy(trn_map* map);
 
 /* ---- plan + score ------------------------------------------------------------------------ */
@@ -252,6 +257,10 @@ typedef struct trn_estimate {
  * call; the localizer keeps its backend alive. */
 TRN_C_API trn_status trn_localizer_create(trn_backend* backend, const uint8_t* map, int width, int height, ptrdiff_t stride,
                                           double metres_per_pixel, const trn_localizer_config* config, trn_localizer** out);
+/* The same on a map with no-data (`valid` as trn_map_upload_masked takes it; NULL: none). */
+TRN_C_API trn_status trn_localizer_create_masked(trn_backend* backend, const uint8_t* map, int width, int height, ptrdiff_t stride,
+                                                 const uint8_t* valid, ptrdiff_t valid_stride, double metres_per_pixel,
+                                                 const trn_localizer_config* config, trn_localizer** out);
 TRN_C_API trn_status trn_localizer_step(trn_localizer* localizer, const trn_observation* observation, trn_estimate* out);
 TRN_C_API void trn_localizer_destroy(trn_localizer* localizer);
 

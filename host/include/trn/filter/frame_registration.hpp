@@ -68,8 +68,10 @@ struct Registration {
     std::vector<FramePose> frames;
 };
 
+// `valid`: the map's no-data (Backend::upload_map), honoured by every score; the coarse global
+// search sees it filled with the valid pixels' mean grey.
 Registration register_frames(Backend& backend, const GrayImage& map, const std::vector<GrayImage>& frames,
-                             const std::vector<std::string>& names, const RegisterOptions& options);
+                             const std::vector<std::string>& names, const RegisterOptions& options, GrayView valid = {});
 
 // NCC of `pose` (dense) and, on a (2r+1)^2 grid (step px) around it at the same yaw and scale
 // (half-resolution template, sparse samples), the best pose and the runner-up: the best other

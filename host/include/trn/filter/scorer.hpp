@@ -31,7 +31,8 @@ struct BackendScorerOptions {
 // particles in one Backend::score call. The backend must outlive the scorer.
 class BackendScorer : public ParticleScorer {
 public:
-    BackendScorer(Backend& backend, GrayView map, const BackendScorerOptions& options = {});
+    // `valid`: the map's no-data (Backend::upload_map); empty: every pixel valid.
+    BackendScorer(Backend& backend, GrayView map, const BackendScorerOptions& options = {}, GrayView valid = {});
     void score(GrayView camera_frame, double map_px_per_camera_px, std::span<const Pose> poses,
                std::span<ParticleScore> out, PhaseTimes* times) override;
     const BackendScorerOptions& options() const { return options_; }

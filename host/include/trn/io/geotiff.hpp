@@ -7,6 +7,7 @@
 // Map pixel (x, y) is the centre of pixel column x, row y, as everywhere in trnkit (trn::sim::Map);
 // in GDAL's pixel/line space that point is (x + 0.5, y + 0.5).
 #include <array>
+#include <optional>
 #include <memory>
 #include <string>
 
@@ -27,8 +28,11 @@ struct GeoTiff {
     std::array<double, 6> geotransform{};  // GDAL's: X = gt0 + col*gt1 + row*gt2, Y = gt3 + col*gt4 + row*gt5
     std::string crs_name;                  // e.g. "WGS 84 / UTM zone 32N"
     std::string crs_wkt;
+    // No-data: 255 valid, 0 not, from GDAL's mask of band 1 (an alpha band, a nodata value or an
+    // internal mask band) and, with `nodata`, pixels whose every colour band equals it. Empty: all valid.
+    GrayImage valid;
 };
-GeoTiff read_geotiff(const std::string& path);
+GeoTiff read_geotiff(const std::string& path, std::optional<int> nodata = std::nullopt);
 
 struct GeoPoint {
     double latitude_deg = 0, longitude_deg = 0;  // WGS84

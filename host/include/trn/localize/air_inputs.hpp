@@ -25,6 +25,7 @@ struct AirInputOptions {
     double focal_px = 0;       // 0: not given; focal length in pixels of a frame focal_width px wide
     int focal_width = 0;
     double fps = 0;            // 0: not given
+    int nodata = -1;           // -1: not given; 0..255: map pixels whose every colour equals it are no-data
 };
 
 struct AirInputs {

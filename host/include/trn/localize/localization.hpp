@@ -115,6 +115,8 @@ struct RunHooks {
 // Throws trn::Error naming the spec field (flight.folder, start_x ...) or the dataset's file:line.
 LocalizationResult run_localization(const LocalizationSpec& spec, GrayView map, double metres_per_pixel, Backend& backend,
                                     const RunHooks& hooks = {});
+// The same on a map with its resolution and no-data (sim::Map::valid).
+LocalizationResult run_localization(const LocalizationSpec& spec, const sim::Map& map, Backend& backend, const RunHooks& hooks = {});
 
 // The same over any flight source with a Localizer already built (tests, custom sources). Its start
 // is config.start_*, else the first sample's ground truth.

@@ -63,7 +63,9 @@ class Localizer {
 public:
     // The map is uploaded to `backend` here (the view need not outlive the constructor); the
     // backend must outlive the Localizer.
-    Localizer(GrayView map, double metres_per_pixel, Backend& backend, const LocalizerConfig& config);
+    // `valid`: the map's no-data (255/non-zero valid, 0 not; the map's size), or empty: every pixel
+    // valid. Samples on no-data are left out of every score (trn/backend.hpp, upload_map).
+    Localizer(GrayView map, double metres_per_pixel, Backend& backend, const LocalizerConfig& config, GrayView valid = {});
     ~Localizer();
     Localizer(const Localizer&) = delete;
     Localizer& operator=(const Localizer&) = delete;

@@ -18,16 +18,20 @@ struct GeoOrigin {
 
 struct Map {
     GrayImage image;
+    GrayImage valid;  // no-data: 255 valid, 0 not (image's size); empty: every pixel is valid
     double metres_per_pixel = 1.0;
     std::optional<GeoOrigin> origin;
 
+    // The no-data mask as Backend::upload_map takes it (an empty view when every pixel is valid).
+    GrayView valid_view() const { return valid.width > 0 ? valid.view() : GrayView{}; }
     double width_m() const { return image.width * metres_per_pixel; }
     double height_m() const { return image.height * metres_per_pixel; }
 };
 
-// Any image OpenCV reads (colour is converted to grey). Throws trn::Error naming the file or the
-// bad resolution.
-Map load_map(const std::string& path, double metres_per_pixel, std::optional<GeoOrigin> origin = std::nullopt);
+// Any image OpenCV reads (colour is converted to grey), its no-data from the alpha channel and
+// `nodata` (trn::load_validity). Throws trn::Error naming the file or the bad resolution.
+Map load_map(const std::string& path, double metres_per_pixel, std::optional<GeoOrigin> origin = std::nullopt,
+             std::optional<int> nodata = std::nullopt);
 
 // Latitude / longitude of a map pixel: local equirectangular projection around the origin
 // (good to centimetres over the few kilometres a map covers). A map without origin uses (0, 0).
