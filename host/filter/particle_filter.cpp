@@ -24,6 +24,14 @@ const char* to_string(SamplingMethod m) {
     return m == SamplingMethod::Kld ? "kld" : m == SamplingMethod::Importance ? "importance" : "rejection";
 }
 
+HeadingMode parse_heading_mode(std::string_view text) {
+    if (text == "compass") return HeadingMode::Compass;
+    if (text == "none") return HeadingMode::None;
+    throw Error("heading '" + std::string(text) + "': unknown; expected compass or none");
+}
+
+const char* to_string(HeadingMode m) { return m == HeadingMode::None ? "none" : "compass"; }
+
 void FilterConfig::validate() const {
     auto positive = [](double v, const char* name) {
         if (!(v > 0) || !std::isfinite(v)) throw Error(std::string("filter config: ") + name + " must be > 0");
@@ -31,6 +39,8 @@ void FilterConfig::validate() const {
     positive(metres_per_pixel, "metres_per_pixel");
     positive(kld_epsilon, "kld_epsilon");
     positive(kld_bin_m, "kld_bin_m");
+    if (!(kld_yaw_bin_deg > 0 && kld_yaw_bin_deg <= 360)) throw Error("filter config: kld_yaw_bin_deg must be in (0, 360]");
+    if (heading != HeadingMode::Compass && heading != HeadingMode::None) throw Error("filter config: heading must be compass or none");
     positive(init_radius_m, "init_radius_m");
     positive(reinit_radius_m, "reinit_radius_m");
     if (!std::isnan(init_heading_sd_deg) && !(init_heading_sd_deg >= 0 && init_heading_sd_deg <= 360))
@@ -51,6 +61,7 @@ ParticleFilter::ParticleFilter(ParticleScorer& scorer, const FilterConfig& confi
     : scorer_(scorer),
       config_(config),
       lock_((config.validate(), config.lock), config.metres_per_pixel, config.seed),  // validated before anything is built
+      yaw_state_(config.heading == HeadingMode::None),
       rng_(splitmix::mix64(config.seed ^ 0x5DEECE66Dull)) {}
 
 double ParticleFilter::uniform() { return splitmix::uniform(rng_); }
@@ -91,6 +102,11 @@ StepMotion ParticleFilter::motion_from(const FilterInput& in, bool& lost) {
     } else {
         last_east_ = east, last_north_ = north;
     }
+    if (yaw_state_) {  // the increment is in the previous frame's axes; the rotation unknown while lost
+        StepMotion m = make_yaw_state_motion(east, north, lost ? NAN : in.odometry_yaw_rad, config_.metres_per_pixel);
+        m.noise_gain = lost ? 3 : 1;
+        return m;
+    }
     const bool have_heading = std::isfinite(in.heading_rad);
     const double frame_heading = have_heading ? in.heading_rad : last_heading_;
     const double turn = have_heading && std::isfinite(last_heading_) ? wrap_angle(in.heading_rad - last_heading_) : 0;
@@ -114,11 +130,16 @@ std::size_t ParticleFilter::sample_and_propagate(const StepMotion& m) {
         cumulative_[i] = total;
         max_w = std::max(max_w, particles_[i].weight);
     }
-    const double bin_px = config_.kld_bin_m / config_.metres_per_pixel;
+    const double bin_px = config_.kld_bin_m / config_.metres_per_pixel, yaw_bin = config_.kld_yaw_bin_deg * kDeg;
     std::unordered_set<std::uint64_t> bins;
     auto occupy = [&](const Particle& p) {
         const auto bx = static_cast<std::int64_t>(std::floor(p.x / bin_px)), by = static_cast<std::int64_t>(std::floor(p.y / bin_px));
-        bins.insert((static_cast<std::uint64_t>(bx) << 32) ^ static_cast<std::uint32_t>(by));
+        std::uint64_t key = (static_cast<std::uint64_t>(bx) << 32) ^ static_cast<std::uint32_t>(by);
+        if (yaw_state_) {  // (x, y, yaw) cells: yaw binned from -pi, the last bin at most yaw_bin wide
+            const auto byaw = static_cast<std::uint64_t>(std::floor((p.yaw + kPi) / yaw_bin));
+            key = splitmix::mix64(key ^ (byaw * 0x9E3779B97F4A7C15ull));
+        }
+        bins.insert(key);
     };
     drawn_.clear();
     auto add = [&](std::size_t i) {
@@ -165,7 +186,7 @@ std::size_t ParticleFilter::measure(const FilterInput& in, double& score_ms) {
     for (std::size_t i = 0; i < particles_.size(); ++i)
         poses_[i] = {static_cast<float>(particles_[i].x), static_cast<float>(particles_[i].y), static_cast<float>(particles_[i].yaw), 1.0f};
     // Probes at random places ride in the same batch (the lock monitor's baseline).
-    const double probe_yaw = std::isfinite(in.heading_rad) ? in.heading_rad : estimate_.yaw;
+    const double probe_yaw = !yaw_state_ && std::isfinite(in.heading_rad) ? in.heading_rad : estimate_.yaw;
     lock_.add_probes(estimate_.x, estimate_.y, probe_yaw, poses_);
     scores_.resize(poses_.size());
     const auto t0 = std::chrono::steady_clock::now();
@@ -204,6 +225,8 @@ void ParticleFilter::update_estimate() {
         double s2 = 0;
         for (const Particle& p : particles_) s2 += p.weight * ((p.x - estimate_.x) * (p.x - estimate_.x) + (p.y - estimate_.y) * (p.y - estimate_.y));
         estimate_.spread_px = std::sqrt(s2 / sw);
+        const double resultant = std::min(1.0, std::hypot(ss, sc) / sw);  // mean resultant length R
+        estimate_.yaw_sd = std::sqrt(-2 * std::log(std::max(resultant, 1e-12)));  // uniform yaws: large (> pi)
     }
 }
 
