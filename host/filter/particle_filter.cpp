@@ -83,6 +83,13 @@ void ParticleFilter::scatter(double x, double y, double heading, bool have_headi
     }
 }
 
+// Without a compass, re-scattered particles keep the yaw the filter has learnt: around `yaw` with
+// its spread (at least one KLD yaw bin), uniform while that spread is still above 90 degrees.
+void ParticleFilter::scatter_yaw_state(double x, double y, double yaw, double yaw_sd, double radius_m, std::size_t count, std::size_t first) {
+    const double sd_deg = std::max(yaw_sd / kDeg, config_.kld_yaw_bin_deg);
+    scatter(x, y, yaw, sd_deg <= 90, radius_m, count, first, sd_deg);
+}
+
 void ParticleFilter::initialise(double x, double y, double heading_rad) {
     if (!std::isfinite(x) || !std::isfinite(y)) throw Error("ParticleFilter::initialise: position must be finite");
     const std::size_t n = config_.sampling == SamplingMethod::Kld ? config_.max_particles : config_.fixed_particles;
@@ -235,7 +242,15 @@ StepReport ParticleFilter::step(const FilterInput& in) {
     StepReport r;
     const StepMotion m = motion_from(in, r.odometry_lost);
     r.occupied_bins = sample_and_propagate(m);
-    lock_.predict(m.east_px, -m.north_px);
+    // The step on the map: with a compass the increment is east/north already; without one it is in
+    // the previous frame's axes, turned here by the estimate's yaw before the step.
+    double step_east_px = m.east_px, step_north_px = m.north_px;
+    const double yaw_before = estimate_.yaw, yaw_sd_before = estimate_.yaw_sd;
+    if (yaw_state_) {
+        const double sn = std::sin(yaw_before), cs = std::cos(yaw_before);
+        step_east_px = m.east_px * cs + m.north_px * sn, step_north_px = m.north_px * cs - m.east_px * sn;
+    }
+    lock_.predict(step_east_px, -step_north_px);
     r.frame_missing = in.frame.empty();
     scores_.clear();
     probe_scores_.clear();
@@ -246,9 +261,13 @@ StepReport ParticleFilter::step(const FilterInput& in) {
         if (!(total > 0) || !std::isfinite(total)) {
             // Collapse: redraw around the last estimate moved by this step's odometry, score again.
             r.reinitialised = true;
-            const double cx = estimate_.x + m.east_px, cy = estimate_.y - m.north_px;
+            const double cx = estimate_.x + step_east_px, cy = estimate_.y - step_north_px;
             const std::size_t n = particles_.size();
-            scatter(cx, cy, m.heading_rad, m.have_heading, config_.reinit_radius_m, n);
+            if (yaw_state_)
+                scatter_yaw_state(cx, cy, wrap_angle(yaw_before + (std::isfinite(m.rotation_rad) ? m.rotation_rad : 0.0)), yaw_sd_before,
+                                  config_.reinit_radius_m, n, 0);
+            else
+                scatter(cx, cy, m.heading_rad, m.have_heading, config_.reinit_radius_m, n);
             r.off_map += measure(in, r.score_ms);
             total = 0;
             for (const Particle& p : particles_) total += p.weight;
@@ -284,7 +303,10 @@ void ParticleFilter::check_lock(const StepMotion& m, StepReport& r) {
     double kept_weight = 0;
     for (std::size_t i = 0; i < keep; ++i) kept_weight += particles_[i].weight;
     const double w = keep > 0 && kept_weight > 0 ? kept_weight / static_cast<double>(keep) : 1.0;
-    scatter(lock_.dead_reckoning_x(), lock_.dead_reckoning_y(), m.heading_rad, m.have_heading, r.lock.widen_radius_m, moved, keep);
+    if (yaw_state_)  // the position is in doubt, the yaw much less: around the estimate's (it is averaged over all particles)
+        scatter_yaw_state(lock_.dead_reckoning_x(), lock_.dead_reckoning_y(), estimate_.yaw, estimate_.yaw_sd, r.lock.widen_radius_m, moved, keep);
+    else
+        scatter(lock_.dead_reckoning_x(), lock_.dead_reckoning_y(), m.heading_rad, m.have_heading, r.lock.widen_radius_m, moved, keep);
     for (std::size_t i = keep; i < n; ++i) particles_[i].weight = w;
     scores_.clear();  // no longer one score per particle
 }

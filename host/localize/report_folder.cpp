@@ -43,7 +43,7 @@ void write_localization_report(const LocalizationResult& result, const std::stri
         strings["heading"] = "none (compass-less: yaw estimated, turned by the odometry's rotation)";
         for (const auto& [k, v] : heading_numbers(result.summary)) numbers[k] = v;
         char line[240];
-        std::snprintf(line, sizeof line, "heading:      none; final yaw sd %.1f deg, mean yaw error %.1f deg; converged (yaw sd < %.0f deg) from frame %.0f, "
+        std::snprintf(line, sizeof line, "heading:      none; final yaw sd %.1f deg, mean yaw error %.1f deg; converged (yaw sd < %.0f deg and a lock fix) from frame %.0f, "
                       "mean error since %.2f m\n",
                       result.summary.final_yaw_sd_deg, result.summary.mean_yaw_error_deg, kConvergedYawSdDeg, result.summary.converged_from_frame,
                       result.summary.converged_mean_error_m);

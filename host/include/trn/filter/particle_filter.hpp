@@ -35,8 +35,10 @@
 // given one (init_heading_sd_deg), turned each step by the odometry's rotation increment plus
 // noise (FilterInput::odometry_yaw_rad; motion_model.hpp), the odometry's translation applied
 // in each particle's own frame (FilterInput's increment is then in the previous frame's axes); the
-// KLD bins are (x, y, yaw) cells of kld_bin_m x kld_bin_m x kld_yaw_bin_deg; a collapse or a lost
-// lock re-scatters yaw uniformly. The estimate's yaw is the circular weighted mean and yaw_sd its
+// KLD bins are (x, y, yaw) cells of kld_bin_m x kld_bin_m x kld_yaw_bin_deg; the lock monitor's
+// dead reckoning turns the increment by the estimate's yaw; a collapse or a lost lock re-scatters
+// positions as with a compass and yaws around the estimate's with its spread (at least one yaw
+// bin; uniform while the spread is above 90 degrees). The estimate's yaw is the circular weighted mean and yaw_sd its
 // circular standard deviation (both modes).
 #include <cmath>
 #include <cstddef>
@@ -154,6 +156,7 @@ private:
     std::size_t draw_index(double total_weight);
     void scatter(double x, double y, double heading, bool have_heading, double radius_m, std::size_t count,
                  std::size_t first = 0, double heading_sd_deg = NAN);
+    void scatter_yaw_state(double x, double y, double yaw, double yaw_sd, double radius_m, std::size_t count, std::size_t first);
     std::size_t measure(const FilterInput& input, double& score_ms);  // returns invalid count
     void update_estimate();
     void check_lock(const StepMotion& m, StepReport& report);

@@ -53,7 +53,8 @@ struct LocalizationSummary {
     std::size_t frames_too_oblique = 0;  // not scored for tilt; counters.frames_missing excludes them
     // The heading estimate (reported for compass-less runs): error of the estimate's yaw against the
     // true yaw (mean |error| over the steps with truth, final), final circular sd of the yaws, and
-    // the error after convergence: from the first step whose yaw sd is below kConvergedYawSdDeg on.
+    // the error after convergence: from the first step whose yaw sd is below kConvergedYawSdDeg and
+    // whose lock-monitor verdict is a fix (position confident; yaw alone when no step was assessed) on.
     double mean_yaw_error_deg = NAN, final_yaw_error_deg = NAN, final_yaw_sd_deg = NAN;
     double converged_from_frame = NAN;        // frame of that first step (NaN: never converged)
     double converged_mean_error_m = NAN;      // mean position error from that step on
