@@ -12,6 +12,7 @@
 #include "commands.hpp"
 #include "field_flags.hpp"
 #include "filter_model_options.hpp"
+#include "heading_options.hpp"
 #include "odometry_option.hpp"
 #include "options.hpp"
 #include "progress.hpp"
@@ -43,6 +44,7 @@ struct LocalizeArgs {
     std::string start, start_latlon;  // "X,Y" map px / "LAT,LON" degrees, checked at parse time
     bool no_plots = false, force = false;
     FilterModelArgs model;
+    HeadingArgs heading;
 };
 
 // "A,B" as two finite reals, or nothing.
@@ -134,13 +136,15 @@ void localize(const LocalizeArgs& a) {
     apply_filter_model_options(a.model, cfg);
     lc.start_x = start_x, lc.start_y = start_y;
     lc.start_heading_rad = a.start_heading_deg * kDeg;
+    apply_heading_options(a.heading, lc, !std::isnan(a.start_heading_deg) ? "--start-heading-deg" : !std::isnan(a.heading_sd_deg) ? "--heading-sd-deg" : "");
+    const bool compassless = cfg.heading == filter::HeadingMode::None;
 
     localize::RunHooks hooks;
     hooks.warning = [](const std::string& w) { std::cerr << "trnkit: warning: " << w << "\n"; };
     hooks.started = [&](const localize::RunInfo& run) {
         std::cerr << "localizing " << dataset << " (" << run.frames << " frames, every " << run.stride << ") on " << backend->info().name << ", "
-                  << cfg.conversion.to_string() << ", " << filter::to_string(cfg.sampling) << " sampling, " << a.odometry << " odometry, seed "
-                  << a.seed << "\n";
+                  << cfg.conversion.to_string() << ", " << filter::to_string(cfg.sampling) << " sampling, " << a.odometry << " odometry, "
+                  << (compassless ? "no compass (yaw prior " + describe_yaw_prior(a.heading) + "), " : std::string()) << "seed " << a.seed << "\n";
     };
     hooks.progress = progress_bar;
     const localize::LocalizationResult result = localize::run_localization(spec, map.image.view(), mpp, *backend, hooks);
@@ -151,7 +155,8 @@ void localize(const LocalizeArgs& a) {
     report.odometry = a.odometry;
     report.strings = {{"backend_requested", a.backend}, {"dataset", dataset}, {"map", in.map_path},
                       {"start", a.start.empty() && a.start_latlon.empty() ? "first row's MapX,MapY" : !a.start.empty() ? "--start " + a.start : "--start-latlon " + a.start_latlon},
-                      {"start_heading", std::isnan(a.start_heading_deg) ? "first magnetometer reading" : "--start-heading-deg"},
+                      {"start_heading", compassless ? "--heading none: yaw prior " + describe_yaw_prior(a.heading)
+                                        : std::isnan(a.start_heading_deg) ? "first magnetometer reading" : "--start-heading-deg"},
                       {"flight_json", in.has_flight_json ? "used" : "absent (camera, map and resolution from options)"},
                       {"georeference", in.georeference.empty() ? "none" : in.georeference}};
     report.numbers = {{"init_radius_m", cfg.init_radius_m}, {"reinit_radius_m", cfg.reinit_radius_m},
@@ -162,6 +167,7 @@ void localize(const LocalizeArgs& a) {
                       {"camera_hfov_deg", in.camera.hfov_deg}, {"max_tilt_deg", a.max_tilt_deg},
                       {"final_estimate_lat", has_latlon ? result.rows.back().estimate_lat : NAN},
                       {"final_estimate_lon", has_latlon ? result.rows.back().estimate_lon : NAN}};
+    if (compassless) report.numbers["start_yaw_deg"] = a.heading.start_yaw_deg, report.numbers["start_yaw_sd_deg"] = cfg.init_heading_sd_deg;
     if (has_latlon) {
         char ll[96];
         std::snprintf(ll, sizeof ll, "lat %.7f lon %.7f", result.rows.back().estimate_lat, result.rows.back().estimate_lon);
@@ -221,7 +227,7 @@ void add_localize_command(CLI::App& app) {
         ->check(pair_in(0, 1e7, 0, 1e7, "X,Y"));
     cmd->add_option("--start-latlon", a->start_latlon, "Start position LAT,LON in degrees (needs a geo origin in flight.json)")
         ->check(pair_in(-90, 90, -180, 180, "LAT,LON"));
-    cmd->add_option("--start-heading-deg", a->start_heading_deg, "Initial heading prior, degrees clockwise from north (default: the first magnetometer reading)")
+    cmd->add_option("--start-heading-deg", a->start_heading_deg, "Initial heading prior, degrees clockwise from north (default: the first magnetometer reading; with --heading none: --start-yaw-deg)")
         ->check(real_in(-360, 360));
     cmd->add_option("--heading-sd-deg", a->heading_sd_deg, "Spread (sd, degrees) of the initial headings (default: --motion-eps-rot)")
         ->check(real_in(0, 360));
@@ -230,6 +236,7 @@ void add_localize_command(CLI::App& app) {
     add_odometry_option(*cmd, a->odometry, {"folder", "visual"},
                         "Odometry fed to the filter: folder (metadata.csv's SvoX/SvoY) or visual (computed from the frames)");
     add_filter_model_options(*cmd, a->model);
+    add_heading_options(*cmd, a->heading);
     cmd->callback([a] { localize(*a); });
 }
 
