@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <optional>
 #include <utility>
+#include <vector>
 #include <filesystem>
 #include <iostream>
 
@@ -80,8 +81,12 @@ void progress_bar(std::size_t done, std::size_t total) { draw_progress(done, tot
 void localize(const LocalizeArgs& a) {
     if (a.min_particles > a.max_particles)
         throw Error("--min-particles " + std::to_string(a.min_particles) + " exceeds --max-particles " + std::to_string(a.max_particles));
-    if ((!a.start.empty()) + (!a.start_latlon.empty()) + (a.start_from_gps_m > 0) > 1)
-        throw Error("--start, --start-latlon and --start-from-gps: give one of them");
+    std::vector<std::string> starts;
+    for (const auto& [given, flag] : {std::pair{!a.start.empty(), "--start"}, {!a.start_latlon.empty(), "--start-latlon"}, {a.start_from_gps_m > 0, "--start-from-gps"}})
+        if (given) starts.push_back(flag);
+    if (starts.size() > 1)
+        throw Error(starts[0] + (starts.size() == 3 ? ", " + starts[1] + " and " + starts[2] : " and " + starts[1]) + ": give one of them, not " +
+                    (starts.size() == 3 ? "all three" : "both"));
     const localize::AirInputs in = localize::resolve_air_inputs(a.inputs);
     const std::string out = a.out.empty() ? a.inputs.dataset + "/localize" : a.out;
     // The default folder comes with the dataset: a link there was planted, not chosen.

@@ -139,7 +139,7 @@ TEST_F(PhotoCli, ErrorsNameTheFlagOrTheFile) {
     EXPECT_HAS(r.output, "has no ground truth (empty MapX,MapY) in its first row; give --start (or --start-from-gps)");
     r = run_trnkit("localize --dataset " + path("air") + " --start 1,1 --start-from-gps 5 --map " + path("map.png") + " --mpp 0.5");
     EXPECT_NE(r.code, 0);
-    EXPECT_HAS(r.output, "--start, --start-latlon and --start-from-gps: give one of them");
+    EXPECT_HAS(r.output, "--start and --start-from-gps: give one of them, not both");
 
     // A camera not in the table.
     fs::remove_all(path("photos"));
