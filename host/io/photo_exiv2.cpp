@@ -63,7 +63,11 @@ std::optional<double> coordinate(const Exiv2::ExifData& exif, const char* key, c
     if (deg < 0 || min < 0 || min > 60 || sec < 0 || sec > 60)  // 60 itself: a writer's rounding
         throw Error(name + ": EXIF " + tag_name(key) + " " + quote_input(d->toString()) + " is not degrees, minutes (<= 60) and seconds (<= 60)");
     const double v = deg + min / 60 + sec / 3600;
-    if (v > limit) throw Error(name + ": EXIF " + tag_name(key) + " " + std::to_string(v) + " deg is beyond " + std::to_string(int(limit)));
+    if (v > limit) {
+        char text[64];
+        std::snprintf(text, sizeof text, " %.6g deg is beyond %g", v, limit);
+        throw Error(name + ": EXIF " + tag_name(key) + text);
+    }
     const std::string r = trimmed(ref->toString());
     if (r == positive) return v;
     if (r == negative) return -v;
@@ -84,14 +88,16 @@ PhotoExif parse_photo_exif(std::string_view bytes, const std::string& name) {
     if (const std::string why = detail::not_jpeg(bytes); !why.empty()) throw Error(name + ": " + why);
     mute_exiv2_once();
     PhotoExif p;
-    Exiv2::ExifData exif;
+    // The image keeps its ExifData: only references to it here, so no exiv2 container is
+    // instantiated in this file (its weak symbols would be exported beside our API, and the device
+    // kit's io layer must export exactly the same).
+    Exiv2::Image::AutoPtr image;
     try {
-        Exiv2::Image::AutoPtr image =
+        image =
             Exiv2::ImageFactory::open(reinterpret_cast<const Exiv2::byte*>(bytes.data()), static_cast<long>(bytes.size()));
         if (!image.get()) throw Error(name + ": not a JPEG exiv2 can read");
         image->readMetadata();
         p.width = image->pixelWidth(), p.height = image->pixelHeight();
-        exif = image->exifData();
     } catch (const Error&) {
         throw;
     } catch (const std::bad_alloc&) {
@@ -100,6 +106,7 @@ PhotoExif parse_photo_exif(std::string_view bytes, const std::string& name) {
         throw Error(name + ": corrupt JPEG or EXIF (exiv2: " + quote_input(e.what(), 120) + ")");
     }
     if (p.width <= 0 || p.height <= 0) throw Error(name + ": corrupt JPEG (no image size in its frame header)");
+    const Exiv2::ExifData& exif = image->exifData();
     try {
         if (const auto* d = find(exif, "Exif.Image.Make")) p.make = trimmed(d->toString());
         if (const auto* d = find(exif, "Exif.Image.Model")) p.model = trimmed(d->toString());
