@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "trn/error.hpp"
+#include "trn/io/atomic_file.hpp"
 #include "trn/io/output_folder.hpp"
 #include "trn/localize/report.hpp"
 
@@ -55,8 +57,13 @@ void write_localization_report(const LocalizationResult& result, const std::stri
     io::open_output_folder(folder, r.owner, r.force, r.folder_name, io::Rerun::ReplacesPrevious);
     write_rows_csv(folder + "/localization.csv", result.rows, compassless);
     write_summary_json(folder + "/summary.json", result.summary, strings, numbers);
+    for (const auto& [name, text] : r.files) {
+        if (name.empty() || name.find('/') != std::string::npos || name[0] == '.') throw Error("report file name '" + name + "' is not a plain name");
+        io::write_file_atomic(folder + "/" + name, text, io::Destination::Derived);
+    }
     os << format_summary(result.summary) << format_lock_summary(result.summary) << after_summary << "summary JSON: " << folder
        << "/summary.json\nper-step CSV: " << folder << "/localization.csv\n";
+    for (const auto& [name, text] : r.files) os << name << ": " << folder << "/" << name << "\n";
     if (r.plots) {
         const PlotFiles plots = plot_run(folder, result.rows, result.summary, map, metres_per_pixel, r.plot_title);
         os << "plots: " << plots.trajectory_png << "\n";

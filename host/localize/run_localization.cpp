@@ -125,11 +125,17 @@ LocalizationResult run_localization(const LocalizationSpec& spec, GrayView map, 
         info.filter_rate_hz = fps / info.stride;
         filter::AirFlightSource source(folder, air->camera, metres_per_pixel, fps, info.stride, (info.frames + info.stride - 1) / info.stride,
                                        {map.width, map.height}, air->max_tilt_deg);
-        if (std::isnan(cfg.start_x)) {  // the start defaults to the first row's truth: refuse before the run when it has none
+        {
             sim::AirReader first(folder);
             sim::AirRecord r;
-            if (first.next(r) && !std::isfinite(r.map_x))
-                throw FieldError("start_x, start_y", "required: " + folder + "/metadata.csv has no ground truth (empty MapX,MapY) in its first row; give `start_x, start_y`");
+            const bool has_row = first.next(r);
+            // The start defaults to the first row's truth: refuse before the run when it has none.
+            if (std::isnan(cfg.start_x) && has_row && !std::isfinite(r.map_x))
+                throw FieldError("start_x, start_y", "required: " + folder + "/metadata.csv has no ground truth (empty MapX,MapY) in its first row; give `start_x, start_y`" +
+                                                         (std::isfinite(r.latitude_deg) ? " (or `start_from_gps`)" : ""));
+            // Photos (import-photos) have no recorded odometry: empty SvoX..Z would make every step "lost".
+            if (spec.odometry == OdometryKind::Recorded && has_row && std::isnan(r.svo_m.x))
+                throw FieldError("odometry", folder + "/metadata.csv has no recorded odometry (empty SvoX..SvoZ, as camera photos have); use visual odometry (computed from the frames)");
         }
         if (hooks.warning)
             for (const std::string& w : source.warnings()) hooks.warning(w);
