@@ -9,6 +9,8 @@ packages=(
   # libraries
   libopencv-dev libeigen3-dev libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev nlohmann-json3-dev libboost-dev
+  # EXIF of camera photos (trnkit import-photos)
+  libexiv2-dev
   # GeoTIFF orthophotos (optional at build time; trnkit localize --map map.tif)
   libgdal-dev
   # OpenCL: headers, ICD loader, PoCL (CPU device)

@@ -14,6 +14,7 @@
 #include "backend_env.hpp"
 #include "commands.hpp"
 #include "filter_model_options.hpp"
+#include "heading_options.hpp"
 #include "odometry_option.hpp"
 #include "options.hpp"
 #include "progress.hpp"
@@ -37,6 +38,8 @@ struct DemoArgs {
     std::uint64_t seed = 1;
     bool no_plots = false, force = false;
     FilterModelArgs model;
+    HeadingArgs heading;
+    std::size_t max_particles = filter::FilterConfig{}.max_particles;
 };
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
@@ -106,6 +109,10 @@ void demo(const DemoArgs& a) {
     lc.filter.seed = a.seed;
     lc.filter.init_radius_m = a.init_radius_m;
     apply_filter_model_options(a.model, lc.filter);
+    lc.filter.max_particles = a.max_particles;
+    if (lc.filter.min_particles > a.max_particles)
+        throw Error("--max-particles " + std::to_string(a.max_particles) + " is below the " + std::to_string(lc.filter.min_particles) + " fewest particles");
+    apply_heading_options(a.heading, lc);
     localize::RunHooks hooks;
     hooks.progress = progress_bar;
     const localize::LocalizationResult result = localize::run_localization(spec, map.image.view(), map.metres_per_pixel, *backend, hooks);
@@ -120,6 +127,11 @@ void demo(const DemoArgs& a) {
     report.strings = {{"scenario", preset.name}};
     report.numbers = {{"map_year", static_cast<double>(a.map_year)}, {"flight_year", static_cast<double>(a.flight_year)},
                       {"init_radius_m", a.init_radius_m}};
+    if (a.max_particles != filter::FilterConfig{}.max_particles) report.numbers["max_particles"] = static_cast<double>(a.max_particles);
+    if (a.heading.heading == "none") {
+        report.strings["start_heading"] = "--heading none: yaw prior " + describe_yaw_prior(a.heading);
+        report.numbers["start_yaw_deg"] = a.heading.start_yaw_deg, report.numbers["start_yaw_sd_deg"] = lc.filter.init_heading_sd_deg;
+    }
     localize::write_localization_report(result, out, map.image.view(), map.metres_per_pixel, report, std::cout);
     std::printf("total %.1f s (maps %.1f s)\n", seconds_since(t0), maps_s);
 }
@@ -152,6 +164,10 @@ void add_demo_command(CLI::App& app) {
     add_odometry_option(*cmd, a->odometry, {"simulated", "visual"},
                         "Odometry fed to the filter: simulated (statistical drift, sim/sensors.hpp) or visual (computed from the frames)");
     add_filter_model_options(*cmd, a->model);
+    add_heading_options(*cmd, a->heading);
+    cmd->add_option("--max-particles", a->max_particles, "KLD sampling: most particles (and the initial set)")
+        ->capture_default_str()
+        ->transform(whole_in(1, kMaxParticles));
     cmd->callback([a] { demo(*a); });
 }
 

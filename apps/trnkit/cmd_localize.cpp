@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <optional>
 #include <utility>
+#include <vector>
 #include <filesystem>
 #include <iostream>
 
@@ -12,6 +13,7 @@
 #include "commands.hpp"
 #include "field_flags.hpp"
 #include "filter_model_options.hpp"
+#include "heading_options.hpp"
 #include "odometry_option.hpp"
 #include "options.hpp"
 #include "progress.hpp"
@@ -20,8 +22,10 @@
 #include "trn/filter/nadir_warp.hpp"
 #include "trn/io/output_folder.hpp"
 #include "trn/localize/air_inputs.hpp"
+#include "trn/localize/gps_track.hpp"
 #include "trn/localize/localization.hpp"
 #include "trn/localize/report_folder.hpp"
+#include "trn/sim/air_format.hpp"
 #include "trn/sim/map.hpp"
 #include "trn/detail/angles.hpp"
 
@@ -41,8 +45,10 @@ struct LocalizeArgs {
     // good until it was lost, so the start is known to metres; 300 m mostly costs mean error.
     double init_radius_m = 50, reinit_radius_m = 300, heading_sd_deg = NAN, start_heading_deg = NAN;
     std::string start, start_latlon;  // "X,Y" map px / "LAT,LON" degrees, checked at parse time
+    double start_from_gps_m = 0;      // > 0: start at the first row's GPS fix within this radius (replaces --init-radius-m)
     bool no_plots = false, force = false;
     FilterModelArgs model;
+    HeadingArgs heading;
 };
 
 // "A,B" as two finite reals, or nothing.
@@ -77,7 +83,12 @@ void progress_bar(std::size_t done, std::size_t total) { draw_progress(done, tot
 void localize(const LocalizeArgs& a) {
     if (a.min_particles > a.max_particles)
         throw Error("--min-particles " + std::to_string(a.min_particles) + " exceeds --max-particles " + std::to_string(a.max_particles));
-    if (!a.start.empty() && !a.start_latlon.empty()) throw Error("--start and --start-latlon: give one of them, not both");
+    std::vector<std::string> starts;
+    for (const auto& [given, flag] : {std::pair{!a.start.empty(), "--start"}, {!a.start_latlon.empty(), "--start-latlon"}, {a.start_from_gps_m > 0, "--start-from-gps"}})
+        if (given) starts.push_back(flag);
+    if (starts.size() > 1)
+        throw Error(starts[0] + (starts.size() == 3 ? ", " + starts[1] + " and " + starts[2] : " and " + starts[1]) + ": give one of them, not " +
+                    (starts.size() == 3 ? "all three" : "both"));
     const localize::AirInputs in = localize::resolve_air_inputs(a.inputs);
     const std::string out = a.out.empty() ? a.inputs.dataset + "/localize" : a.out;
     // The default folder comes with the dataset: a link there was planted, not chosen.
@@ -101,8 +112,17 @@ void localize(const LocalizeArgs& a) {
         const auto p = in.to_map_pixel(lat, lon);
         start_x = p[0], start_y = p[1];
     }
+    // Camera GPS (import-photos): the first fix as the start, every fix as a reference track.
+    const localize::GpsTrack gps = a.start_from_gps_m > 0 || in.latlon_source == sim::kLatLonCameraGps ? localize::read_gps_track(dataset)
+                                                                                                     : localize::GpsTrack{};
+    if (a.start_from_gps_m > 0) {
+        const std::array<double, 2> p = localize::gps_start(gps, dataset, in.to_map_pixel);
+        start_x = p[0], start_y = p[1];
+    }
+    const std::string start_text = !a.start.empty() ? "--start " + a.start : !a.start_latlon.empty() ? "--start-latlon " + a.start_latlon
+                                                                                                      : "--start-from-gps (the first row's GPS fix)";
     if (std::isfinite(start_x) && !(start_x >= 0 && start_x < map.image.width && start_y >= 0 && start_y < map.image.height))
-        throw Error((a.start.empty() ? "--start-latlon " + a.start_latlon : "--start " + a.start) + ": map pixel " + std::to_string(start_x) +
+        throw Error(start_text + ": map pixel " + std::to_string(start_x) +
                     "," + std::to_string(start_y) + " is outside the " + std::to_string(map.image.width) + "x" +
                     std::to_string(map.image.height) + " px map");
 
@@ -128,19 +148,21 @@ void localize(const LocalizeArgs& a) {
     cfg.min_particles = a.min_particles;
     cfg.max_particles = a.max_particles;
     cfg.seed = a.seed;
-    cfg.init_radius_m = a.init_radius_m;
+    cfg.init_radius_m = a.start_from_gps_m > 0 ? a.start_from_gps_m : a.init_radius_m;
     cfg.reinit_radius_m = a.reinit_radius_m;
     cfg.init_heading_sd_deg = a.heading_sd_deg;
     apply_filter_model_options(a.model, cfg);
     lc.start_x = start_x, lc.start_y = start_y;
     lc.start_heading_rad = a.start_heading_deg * kDeg;
+    apply_heading_options(a.heading, lc, !std::isnan(a.start_heading_deg) ? "--start-heading-deg" : !std::isnan(a.heading_sd_deg) ? "--heading-sd-deg" : "");
+    const bool compassless = cfg.heading == filter::HeadingMode::None;
 
     localize::RunHooks hooks;
     hooks.warning = [](const std::string& w) { std::cerr << "trnkit: warning: " << w << "\n"; };
     hooks.started = [&](const localize::RunInfo& run) {
         std::cerr << "localizing " << dataset << " (" << run.frames << " frames, every " << run.stride << ") on " << backend->info().name << ", "
-                  << cfg.conversion.to_string() << ", " << filter::to_string(cfg.sampling) << " sampling, " << a.odometry << " odometry, seed "
-                  << a.seed << "\n";
+                  << cfg.conversion.to_string() << ", " << filter::to_string(cfg.sampling) << " sampling, " << a.odometry << " odometry, "
+                  << (compassless ? "no compass (yaw prior " + describe_yaw_prior(a.heading) + "), " : std::string()) << "seed " << a.seed << "\n";
     };
     hooks.progress = progress_bar;
     const localize::LocalizationResult result = localize::run_localization(spec, map, *backend, hooks);
@@ -150,8 +172,9 @@ void localize(const LocalizeArgs& a) {
     report.owner = "localize", report.folder_name = "--out", report.force = a.force, report.plots = !a.no_plots, report.plot_title = in.scenario;
     report.odometry = a.odometry;
     report.strings = {{"backend_requested", a.backend}, {"dataset", dataset}, {"map", in.map_path},
-                      {"start", a.start.empty() && a.start_latlon.empty() ? "first row's MapX,MapY" : !a.start.empty() ? "--start " + a.start : "--start-latlon " + a.start_latlon},
-                      {"start_heading", std::isnan(a.start_heading_deg) ? "first magnetometer reading" : "--start-heading-deg"},
+                      {"start", a.start.empty() && a.start_latlon.empty() && !(a.start_from_gps_m > 0) ? "first row's MapX,MapY" : start_text},
+                      {"start_heading", compassless ? "--heading none: yaw prior " + describe_yaw_prior(a.heading)
+                                        : std::isnan(a.start_heading_deg) ? "first magnetometer reading" : "--start-heading-deg"},
                       {"flight_json", in.has_flight_json ? "used" : "absent (camera, map and resolution from options)"},
                       {"georeference", in.georeference.empty() ? "none" : in.georeference},
                       {"map_no_data", map.valid.width > 0 ? "masked (alpha, GeoTIFF mask or --nodata)" : "none"}};
@@ -163,10 +186,22 @@ void localize(const LocalizeArgs& a) {
                       {"camera_hfov_deg", in.camera.hfov_deg}, {"max_tilt_deg", a.max_tilt_deg},
                       {"final_estimate_lat", has_latlon ? result.rows.back().estimate_lat : NAN},
                       {"final_estimate_lon", has_latlon ? result.rows.back().estimate_lon : NAN}};
+    if (compassless) report.numbers["start_yaw_deg"] = a.heading.start_yaw_deg, report.numbers["start_yaw_sd_deg"] = cfg.init_heading_sd_deg;
     if (has_latlon) {
         char ll[96];
         std::snprintf(ll, sizeof ll, "lat %.7f lon %.7f", result.rows.back().estimate_lat, result.rows.back().estimate_lon);
         report.after_summary = "final estimate: " + std::string(ll) + " (" + in.georeference + ")\n";
+    }
+    if (gps.camera_gps && !gps.fixes.empty() && in.to_map_pixel) {  // the camera's fixes beside the estimates
+        const localize::GpsComparison c = localize::compare_with_gps(result, gps, in.to_map_pixel, mpp);
+        report.files["gps_track.csv"] = c.csv;
+        report.strings["gps_reference"] = std::string("metadata.csv Latitude,Longitude: ") + localize::kCameraGpsCaveat;
+        report.numbers["estimate_to_gps_mean_m"] = c.mean_m, report.numbers["estimate_to_gps_final_m"] = c.final_m;
+        report.numbers["estimate_to_gps_max_m"] = c.max_m, report.numbers["gps_fixes_compared"] = static_cast<double>(c.compared);
+        char line[200];
+        std::snprintf(line, sizeof line, "estimate to camera GPS: mean %.1f m, final %.1f m, max %.1f m over %zu fixes (", c.mean_m, c.final_m,
+                      c.max_m, c.compared);
+        report.after_summary += line + std::string(localize::kCameraGpsCaveat) + ")\n";
     }
     localize::write_localization_report(result, out, map.image.view(), mpp, report, std::cout);
 }
@@ -226,7 +261,11 @@ void add_localize_command(CLI::App& app) {
         ->check(pair_in(0, 1e7, 0, 1e7, "X,Y"));
     cmd->add_option("--start-latlon", a->start_latlon, "Start position LAT,LON in degrees (needs a geo origin in flight.json)")
         ->check(pair_in(-90, 90, -180, 180, "LAT,LON"));
-    cmd->add_option("--start-heading-deg", a->start_heading_deg, "Initial heading prior, degrees clockwise from north (default: the first magnetometer reading)")
+    cmd->add_option("--start-from-gps", a->start_from_gps_m,
+                    "Start within this radius (m) of the first row's GPS fix (camera photos: import-photos); needs a georeferenced map "
+                    "(GeoTIFF or flight.json origin); replaces --init-radius-m")
+        ->check(real_in(0, 1e5, Open::low));
+    cmd->add_option("--start-heading-deg", a->start_heading_deg, "Initial heading prior, degrees clockwise from north (default: the first magnetometer reading; with --heading none: --start-yaw-deg)")
         ->check(real_in(-360, 360));
     cmd->add_option("--heading-sd-deg", a->heading_sd_deg, "Spread (sd, degrees) of the initial headings (default: --motion-eps-rot)")
         ->check(real_in(0, 360));
@@ -235,6 +274,7 @@ void add_localize_command(CLI::App& app) {
     add_odometry_option(*cmd, a->odometry, {"folder", "visual"},
                         "Odometry fed to the filter: folder (metadata.csv's SvoX/SvoY) or visual (computed from the frames)");
     add_filter_model_options(*cmd, a->model);
+    add_heading_options(*cmd, a->heading);
     cmd->callback([a] { localize(*a); });
 }
 

@@ -15,5 +15,6 @@ void add_check_command(CLI::App& app);     // cmd_check.cpp    (cross-backend sc
 void add_localize_command(CLI::App& app);  // cmd_localize.cpp (DPC-PFL on an AIR folder)
 void add_experiment_command(CLI::App& app);  // cmd_experiment.cpp (dissertation studies)
 void add_register_command(CLI::App& app);  // cmd_register.cpp (poses of real frames on a map)
+void add_import_photos_command(CLI::App& app);  // cmd_import_photos.cpp (camera photos -> AIR folder)
 
 }  // namespace trn::cli

@@ -7,7 +7,7 @@ namespace trn::cli {
 namespace {
 
 // One table for every command: a field has one flag wherever it appears.
-constexpr std::array<std::pair<const char*, const char*>, 29> kFlags{{
+constexpr std::array<std::pair<const char*, const char*>, 37> kFlags{{
     {"dataset", "--dataset"},
     {"flight.folder", "--dataset"},
     {"map", "--map"},
@@ -24,6 +24,16 @@ constexpr std::array<std::pair<const char*, const char*>, 29> kFlags{{
     {"start_heading_rad", "--start-heading-deg"},
     {"init_radius_m", "--init-radius-m"},
     {"reinit_radius_m", "--reinit-radius-m"},
+    // import-photos (trnkit::sim's photo import)
+    {"photos", "DIR"},
+    {"altitude_agl_m", "--altitude-agl"},
+    {"sensor_width_mm", "--sensor-width-mm"},
+    {"width", "--width"},
+    {"ignore_orientation", "--ignore-orientation"},
+    {"map_origin", "--map-origin"},
+    // localize --start-from-gps
+    {"start_from_gps", "--start-from-gps"},
+    {"odometry", "--odometry"},
     // energy integrate / compare (trnkit::energy's run report and its hints)
     {"utc_offset", "--utc-offset"},
     {"timezone", "--timezone"},

@@ -13,6 +13,13 @@ void add_filter_model_options(CLI::App& cmd, FilterModelArgs& a) {
     cmd.add_option("--motion-eps-tran", a.motion.eps_tran_m, "Motion model: position sd per step, metres (eps_tran)")->check(real_in(0, 1000))->capture_default_str();
     cmd.add_option("--motion-eps-rot", a.motion.eps_rot_deg, "Motion model: heading sd around the measured heading, degrees (eps_rot)")
         ->check(real_in(0, 180))->capture_default_str();
+    cmd.add_option("--motion-yaw-sd", a.motion.yaw_sd_deg, "Motion model, --heading none: yaw sd added per step to the odometry's rotation, degrees")
+        ->check(real_in(0, 180))->capture_default_str();
+    cmd.add_option("--motion-yaw-turn-sd", a.motion.yaw_turn_sd, "Motion model, --heading none: extra yaw sd per radian the odometry turned")
+        ->check(real_in(0, 5))->capture_default_str();
+    cmd.add_option("--motion-yaw-unknown-sd", a.motion.yaw_unknown_sd_deg,
+                   "Motion model, --heading none: yaw sd per step when the odometry's rotation is unknown (lost), degrees")
+        ->check(real_in(0, 180))->capture_default_str();
     cmd.add_flag("--motion-along-heading", a.along_heading,
                  "Literal eqs. 2.7-2.9: move the odometry's distance along the heading, ignoring its direction");
     cmd.add_option("--lock-min-contrast", a.lock.min_contrast,

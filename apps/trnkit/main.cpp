@@ -46,6 +46,7 @@ int run(int argc, char** argv) {
     trn::cli::add_localize_command(app);
     trn::cli::add_experiment_command(app);
     trn::cli::add_register_command(app);
+    trn::cli::add_import_photos_command(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -44,6 +44,14 @@ trn::localize::LocalizerConfig to_config(const trn_localizer_config& c) {
     if (c.sampling) f.sampling = trn::filter::parse_sampling_method(c.sampling);
     f.min_particles = c.min_particles, f.max_particles = c.max_particles, f.fixed_particles = c.particles;
     f.init_radius_m = c.init_radius_m, f.reinit_radius_m = c.reinit_radius_m;
+    if (c.heading) {
+        try {
+            f.heading = trn::filter::parse_heading_mode(c.heading);
+        } catch (const trn::Error& e) {
+            throw InvalidArgument(std::string("config->heading: ") + e.what());
+        }
+    }
+    f.init_heading_sd_deg = c.start_heading_sd_deg;
     return l;
 }
 
@@ -59,6 +67,7 @@ trn::localize::Observation from_c(const trn_observation& o) {
     x.odometry_east_m = o.odometry_east_m, x.odometry_north_m = o.odometry_north_m;
     x.heading_rad = o.heading_rad;
     x.has_attitude = o.has_attitude != 0, x.roll_rad = o.roll_rad, x.pitch_rad = o.pitch_rad;
+    x.odometry_yaw_rad = o.odometry_yaw_rad;
     return x;
 }
 
@@ -69,6 +78,7 @@ trn_observation to_c(const trn::localize::Observation& o) {
     c.odometry_east_m = o.odometry_east_m, c.odometry_north_m = o.odometry_north_m;
     c.heading_rad = o.heading_rad;
     c.has_attitude = o.has_attitude, c.roll_rad = o.roll_rad, c.pitch_rad = o.pitch_rad;
+    c.odometry_yaw_rad = o.odometry_yaw_rad;
     return c;
 }
 
@@ -87,6 +97,8 @@ trn_localizer_config trn_localizer_config_default(void) {
     c.conversion = nullptr, c.sampling = nullptr;
     c.min_particles = l.filter.min_particles, c.max_particles = l.filter.max_particles, c.particles = l.filter.fixed_particles;
     c.init_radius_m = l.filter.init_radius_m, c.reinit_radius_m = l.filter.reinit_radius_m;
+    c.heading = nullptr;
+    c.start_heading_sd_deg = l.filter.init_heading_sd_deg;
     return c;
 }
 
@@ -97,6 +109,7 @@ trn_observation trn_observation_default(void) {
     o.odometry_east_m = o.odometry_north_m = NAN;
     o.heading_rad = NAN;
     o.has_attitude = 0, o.roll_rad = o.pitch_rad = 0;
+    o.odometry_yaw_rad = NAN;
     return o;
 }
 
@@ -151,6 +164,7 @@ trn_status trn_localizer_step(trn_localizer* localizer, const trn_observation* o
         c.lock_state = trn::localize::lock_state_name(e.lock);
         c.lock_contrast = e.lock.contrast, c.lock_drift_m = e.lock.drift_m;
         c.score_ms = e.score_ms, c.step_ms = e.step_ms;
+        c.yaw_sd = e.yaw_sd;
         *out = c;
     });
 }
@@ -203,6 +217,7 @@ trn_status trn_air_reader_next(trn_air_reader* reader, trn_air_row* out, int* ha
         r.filename = f.filename.c_str();
         r.image_error = f.image_error.c_str();
         r.observation = to_c(f.observation());
+        r.observation_without_compass = to_c(f.observation_without_compass());
         r.truth_x = f.truth_x, r.truth_y = f.truth_y;
         *out = r;
         *has_row = 1;

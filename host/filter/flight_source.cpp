@@ -112,6 +112,7 @@ bool AirFlightSource::next(FlightSample& s) {
         s.odometry_east_m = r.svo_m.x, s.odometry_north_m = r.svo_m.y;
         s.odometry_source = "folder";
         s.heading_rad = sim::heading_from_quaternion(r.imu);
+        s.odometry_yaw_rad = s.heading_rad;  // the folder has no other heading: its changes turn a compass-less filter
         s.map_px_per_camera_px = sim::template_scale(camera_, r.relative_altitude_m, mpp_);
         s.image = {};
         s.image_error.clear();
@@ -179,6 +180,7 @@ bool SimulatedFlightSource::next(FlightSample& s) {
         s.odometry_east_m = f.odometry_m.x, s.odometry_north_m = f.odometry_m.y;
         s.odometry_source = "simulated";
         s.heading_rad = f.magnetometer_heading_rad;
+        s.odometry_yaw_rad = f.odometry_yaw_rad;
         s.map_px_per_camera_px = sim::measured_template_scale(f, config_.camera, world_.metres_per_pixel);  // barometric, like a real flight
         sim::RenderOptions r = config_.render;
         r.noise_seed = ((config_.seed * 0x9E3779B97F4A7C15ull) ^ (r.noise_seed + 0x632BE59BD9B4E019ull * (f.index + 1))) | 1;

@@ -17,6 +17,9 @@ void MotionModel::validate() const {
     in_range(alpha3, 0, 5, "alpha3");
     in_range(eps_tran_m, 0, 1000, "eps_tran_m");
     in_range(eps_rot_deg, 0, 180, "eps_rot_deg");
+    in_range(yaw_sd_deg, 0, 180, "yaw_sd_deg");
+    in_range(yaw_turn_sd, 0, 5, "yaw_turn_sd");
+    in_range(yaw_unknown_sd_deg, 0, 180, "yaw_unknown_sd_deg");
 }
 
 StepMotion make_step_motion(double east_m, double north_m, double heading_rad, double frame_heading_rad, double turn_rad,
@@ -36,8 +39,28 @@ StepMotion make_step_motion(double east_m, double north_m, double heading_rad, d
     return m;
 }
 
+StepMotion make_yaw_state_motion(double right_m, double forward_m, double rotation_rad, double mpp) {
+    // The increment against heading 0: north = forward, east = right, so delta_c = atan2(right, forward).
+    StepMotion m = make_step_motion(right_m, forward_m, NAN, 0.0, rotation_rad, mpp);
+    m.yaw_state = true;
+    m.rotation_rad = std::isfinite(rotation_rad) ? wrap_angle(rotation_rad) : NAN;
+    return m;
+}
+
 void propagate_particle(const MotionModel& model, const StepMotion& m, double mpp, const std::array<double, 5>& z, double& x,
                         double& y, double& yaw) {
+    if (m.yaw_state) {
+        const double d = m.distance_px * (1 + model.alpha1 * m.noise_gain * z[1]);
+        const double offset = model.along_heading ? 0.0 : m.course_offset_rad;
+        const double course = yaw + offset + ((model.alpha2 * m.noise_gain) + model.alpha3 * m.turn_rad) * z[2];
+        const double pos_sd = model.eps_tran_m / mpp;
+        x += d * std::sin(course) + pos_sd * z[3];
+        y -= d * std::cos(course) + pos_sd * z[4];
+        const bool known = std::isfinite(m.rotation_rad);
+        const double sd = known ? model.yaw_sd_deg * kDeg + model.yaw_turn_sd * std::abs(m.rotation_rad) : model.yaw_unknown_sd_deg * kDeg;
+        yaw = wrap_angle(yaw + (known ? m.rotation_rad : 0.0) + sd * z[0]);
+        return;
+    }
     yaw = wrap_angle((m.have_heading ? m.heading_rad : yaw) + model.eps_rot_deg * kDeg * z[0]);
     const double d = m.distance_px * (1 + model.alpha1 * m.noise_gain * z[1]);
     const double offset = model.along_heading ? 0.0 : m.course_offset_rad;

@@ -24,6 +24,14 @@ const char* to_string(SamplingMethod m) {
     return m == SamplingMethod::Kld ? "kld" : m == SamplingMethod::Importance ? "importance" : "rejection";
 }
 
+HeadingMode parse_heading_mode(std::string_view text) {
+    if (text == "compass") return HeadingMode::Compass;
+    if (text == "none") return HeadingMode::None;
+    throw Error("heading '" + std::string(text) + "': unknown; expected compass or none");
+}
+
+const char* to_string(HeadingMode m) { return m == HeadingMode::None ? "none" : "compass"; }
+
 void FilterConfig::validate() const {
     auto positive = [](double v, const char* name) {
         if (!(v > 0) || !std::isfinite(v)) throw Error(std::string("filter config: ") + name + " must be > 0");
@@ -31,6 +39,8 @@ void FilterConfig::validate() const {
     positive(metres_per_pixel, "metres_per_pixel");
     positive(kld_epsilon, "kld_epsilon");
     positive(kld_bin_m, "kld_bin_m");
+    if (!(kld_yaw_bin_deg > 0 && kld_yaw_bin_deg <= 360)) throw Error("filter config: kld_yaw_bin_deg must be in (0, 360]");
+    if (heading != HeadingMode::Compass && heading != HeadingMode::None) throw Error("filter config: heading must be compass or none");
     positive(init_radius_m, "init_radius_m");
     positive(reinit_radius_m, "reinit_radius_m");
     if (!std::isnan(init_heading_sd_deg) && !(init_heading_sd_deg >= 0 && init_heading_sd_deg <= 360))
@@ -51,6 +61,7 @@ ParticleFilter::ParticleFilter(ParticleScorer& scorer, const FilterConfig& confi
     : scorer_(scorer),
       config_(config),
       lock_((config.validate(), config.lock), config.metres_per_pixel, config.seed),  // validated before anything is built
+      yaw_state_(config.heading == HeadingMode::None),
       rng_(splitmix::mix64(config.seed ^ 0x5DEECE66Dull)) {}
 
 double ParticleFilter::uniform() { return splitmix::uniform(rng_); }
@@ -72,6 +83,13 @@ void ParticleFilter::scatter(double x, double y, double heading, bool have_headi
     }
 }
 
+// Without a compass, re-scattered particles keep the yaw the filter has learnt: around `yaw` with
+// its spread (at least one KLD yaw bin), uniform while that spread is still above 90 degrees.
+void ParticleFilter::scatter_yaw_state(double x, double y, double yaw, double yaw_sd, double radius_m, std::size_t count, std::size_t first) {
+    const double sd_deg = std::max(yaw_sd / kDeg, config_.kld_yaw_bin_deg);
+    scatter(x, y, yaw, sd_deg <= 90, radius_m, count, first, sd_deg);
+}
+
 void ParticleFilter::initialise(double x, double y, double heading_rad) {
     if (!std::isfinite(x) || !std::isfinite(y)) throw Error("ParticleFilter::initialise: position must be finite");
     const std::size_t n = config_.sampling == SamplingMethod::Kld ? config_.max_particles : config_.fixed_particles;
@@ -90,6 +108,11 @@ StepMotion ParticleFilter::motion_from(const FilterInput& in, bool& lost) {
         east = last_east_, north = last_north_;  // constant velocity while odometry is lost
     } else {
         last_east_ = east, last_north_ = north;
+    }
+    if (yaw_state_) {  // the increment is in the previous frame's axes; the rotation unknown while lost
+        StepMotion m = make_yaw_state_motion(east, north, lost ? NAN : in.odometry_yaw_rad, config_.metres_per_pixel);
+        m.noise_gain = lost ? 3 : 1;
+        return m;
     }
     const bool have_heading = std::isfinite(in.heading_rad);
     const double frame_heading = have_heading ? in.heading_rad : last_heading_;
@@ -114,11 +137,16 @@ std::size_t ParticleFilter::sample_and_propagate(const StepMotion& m) {
         cumulative_[i] = total;
         max_w = std::max(max_w, particles_[i].weight);
     }
-    const double bin_px = config_.kld_bin_m / config_.metres_per_pixel;
+    const double bin_px = config_.kld_bin_m / config_.metres_per_pixel, yaw_bin = config_.kld_yaw_bin_deg * kDeg;
     std::unordered_set<std::uint64_t> bins;
     auto occupy = [&](const Particle& p) {
         const auto bx = static_cast<std::int64_t>(std::floor(p.x / bin_px)), by = static_cast<std::int64_t>(std::floor(p.y / bin_px));
-        bins.insert((static_cast<std::uint64_t>(bx) << 32) ^ static_cast<std::uint32_t>(by));
+        std::uint64_t key = (static_cast<std::uint64_t>(bx) << 32) ^ static_cast<std::uint32_t>(by);
+        if (yaw_state_) {  // (x, y, yaw) cells: yaw binned from -pi, the last bin at most yaw_bin wide
+            const auto byaw = static_cast<std::uint64_t>(std::floor((p.yaw + kPi) / yaw_bin));
+            key = splitmix::mix64(key ^ (byaw * 0x9E3779B97F4A7C15ull));
+        }
+        bins.insert(key);
     };
     drawn_.clear();
     auto add = [&](std::size_t i) {
@@ -165,7 +193,7 @@ std::size_t ParticleFilter::measure(const FilterInput& in, double& score_ms) {
     for (std::size_t i = 0; i < particles_.size(); ++i)
         poses_[i] = {static_cast<float>(particles_[i].x), static_cast<float>(particles_[i].y), static_cast<float>(particles_[i].yaw), 1.0f};
     // Probes at random places ride in the same batch (the lock monitor's baseline).
-    const double probe_yaw = std::isfinite(in.heading_rad) ? in.heading_rad : estimate_.yaw;
+    const double probe_yaw = !yaw_state_ && std::isfinite(in.heading_rad) ? in.heading_rad : estimate_.yaw;
     lock_.add_probes(estimate_.x, estimate_.y, probe_yaw, poses_);
     scores_.resize(poses_.size());
     const auto t0 = std::chrono::steady_clock::now();
@@ -204,6 +232,8 @@ void ParticleFilter::update_estimate() {
         double s2 = 0;
         for (const Particle& p : particles_) s2 += p.weight * ((p.x - estimate_.x) * (p.x - estimate_.x) + (p.y - estimate_.y) * (p.y - estimate_.y));
         estimate_.spread_px = std::sqrt(s2 / sw);
+        const double resultant = std::min(1.0, std::hypot(ss, sc) / sw);  // mean resultant length R
+        estimate_.yaw_sd = std::sqrt(-2 * std::log(std::max(resultant, 1e-12)));  // uniform yaws: large (> pi)
     }
 }
 
@@ -212,7 +242,15 @@ StepReport ParticleFilter::step(const FilterInput& in) {
     StepReport r;
     const StepMotion m = motion_from(in, r.odometry_lost);
     r.occupied_bins = sample_and_propagate(m);
-    lock_.predict(m.east_px, -m.north_px);
+    // The step on the map: with a compass the increment is east/north already; without one it is in
+    // the previous frame's axes, turned here by the estimate's yaw before the step.
+    double step_east_px = m.east_px, step_north_px = m.north_px;
+    const double yaw_before = estimate_.yaw, yaw_sd_before = estimate_.yaw_sd;
+    if (yaw_state_) {
+        const double sn = std::sin(yaw_before), cs = std::cos(yaw_before);
+        step_east_px = m.east_px * cs + m.north_px * sn, step_north_px = m.north_px * cs - m.east_px * sn;
+    }
+    lock_.predict(step_east_px, -step_north_px);
     r.frame_missing = in.frame.empty();
     scores_.clear();
     probe_scores_.clear();
@@ -223,9 +261,13 @@ StepReport ParticleFilter::step(const FilterInput& in) {
         if (!(total > 0) || !std::isfinite(total)) {
             // Collapse: redraw around the last estimate moved by this step's odometry, score again.
             r.reinitialised = true;
-            const double cx = estimate_.x + m.east_px, cy = estimate_.y - m.north_px;
+            const double cx = estimate_.x + step_east_px, cy = estimate_.y - step_north_px;
             const std::size_t n = particles_.size();
-            scatter(cx, cy, m.heading_rad, m.have_heading, config_.reinit_radius_m, n);
+            if (yaw_state_)
+                scatter_yaw_state(cx, cy, wrap_angle(yaw_before + (std::isfinite(m.rotation_rad) ? m.rotation_rad : 0.0)), yaw_sd_before,
+                                  config_.reinit_radius_m, n, 0);
+            else
+                scatter(cx, cy, m.heading_rad, m.have_heading, config_.reinit_radius_m, n);
             r.off_map += measure(in, r.score_ms);
             total = 0;
             for (const Particle& p : particles_) total += p.weight;
@@ -261,7 +303,10 @@ void ParticleFilter::check_lock(const StepMotion& m, StepReport& r) {
     double kept_weight = 0;
     for (std::size_t i = 0; i < keep; ++i) kept_weight += particles_[i].weight;
     const double w = keep > 0 && kept_weight > 0 ? kept_weight / static_cast<double>(keep) : 1.0;
-    scatter(lock_.dead_reckoning_x(), lock_.dead_reckoning_y(), m.heading_rad, m.have_heading, r.lock.widen_radius_m, moved, keep);
+    if (yaw_state_)  // the position is in doubt, the yaw much less: around the estimate's (it is averaged over all particles)
+        scatter_yaw_state(lock_.dead_reckoning_x(), lock_.dead_reckoning_y(), estimate_.yaw, estimate_.yaw_sd, r.lock.widen_radius_m, moved, keep);
+    else
+        scatter(lock_.dead_reckoning_x(), lock_.dead_reckoning_y(), m.heading_rad, m.have_heading, r.lock.widen_radius_m, moved, keep);
     for (std::size_t i = keep; i < n; ++i) particles_[i].weight = w;
     scores_.clear();  // no longer one score per particle
 }

@@ -9,6 +9,7 @@
 #include <opencv2/features2d.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "trn/detail/angles.hpp"
 #include "trn/error.hpp"
 
 namespace trn::filter {
@@ -152,14 +153,15 @@ GroundStep ground_displacement(double dx_px, double dy_px, double metres_per_px,
     return {metres_per_px * (c * dx_px - s * dy_px), -metres_per_px * (s * dx_px + c * dy_px)};
 }
 
-VisualOdometrySource::VisualOdometrySource(FlightSource& inner, double map_metres_per_pixel, const VisualOdometryOptions& options)
-    : inner_(inner), mpp_(map_metres_per_pixel), vo_(options) {
+VisualOdometrySource::VisualOdometrySource(FlightSource& inner, double map_metres_per_pixel, const VisualOdometryOptions& options,
+                                           bool own_yaw)
+    : inner_(inner), mpp_(map_metres_per_pixel), vo_(options), own_yaw_(own_yaw) {
     if (!(map_metres_per_pixel > 0)) throw Error("VisualOdometrySource: map_metres_per_pixel must be > 0");
 }
 
 bool VisualOdometrySource::next(FlightSample& s) {
     if (!inner_.next(s)) return false;
-    s.odometry_east_m = s.odometry_north_m = NAN;
+    s.odometry_east_m = s.odometry_north_m = s.odometry_yaw_rad = NAN;
     if (s.image.pixels.empty()) {  // keep the reference: the next frame is matched across the gap
         ++counts_.no_frame;
         s.odometry_source = "visual:no-frame";
@@ -170,11 +172,14 @@ bool VisualOdometrySource::next(FlightSample& s) {
     if (!have_reference_) {
         have_reference_ = true;
         s.odometry_east_m = east_m_, s.odometry_north_m = north_m_;
+        s.odometry_yaw_rad = own_yaw_ ? yaw_ : s.heading_rad;
         s.odometry_source = "visual:start";
     } else if (last_.ok() && std::isfinite(ref_metres_per_px_) && std::isfinite(ref_heading_)) {
         const GroundStep g = ground_displacement(last_.dx_px, last_.dy_px, ref_metres_per_px_, ref_heading_);
         east_m_ += g.east_m, north_m_ += g.north_m;
         s.odometry_east_m = east_m_, s.odometry_north_m = north_m_;
+        if (own_yaw_ && std::isfinite(last_.rotation_rad)) yaw_ = wrap_angle(yaw_ + last_.rotation_rad);
+        s.odometry_yaw_rad = own_yaw_ ? yaw_ : s.heading_rad;
         ++(last_.method == MotionMethod::Features ? counts_.features : counts_.phase);
         s.odometry_source = last_.method == MotionMethod::Features ? "visual:features" : "visual:phase";
     } else {
@@ -182,7 +187,7 @@ bool VisualOdometrySource::next(FlightSample& s) {
         s.odometry_source = "visual:lost";
     }
     ref_metres_per_px_ = metres_per_px > 0 ? metres_per_px : NAN;
-    ref_heading_ = s.heading_rad;
+    ref_heading_ = own_yaw_ ? yaw_ : s.heading_rad;
     return true;
 }
 

@@ -57,8 +57,11 @@ AirInputs resolve_air_inputs(const AirInputOptions& o) {
         in.scenario = info.scenario;
         in.camera = info.camera;
         in.fps = info.fps;
+        in.latlon_source = info.latlon_source;
         if (!o.map.empty() && !info.map_file.empty()) in.notes.push_back({"map", o.map + " overrides flight.json's map_file " + info.map_file});
-        if (o.metres_per_pixel > 0 && o.metres_per_pixel != info.metres_per_pixel)
+        if (!(info.metres_per_pixel > 0) && !(o.metres_per_pixel > 0) && !geotiff)  // a folder that names no map (import-photos)
+            throw FieldError("metres_per_pixel", "required: " + info_path + " names no map resolution and the map is not a GeoTIFF");
+        if (o.metres_per_pixel > 0 && info.metres_per_pixel > 0 && o.metres_per_pixel != info.metres_per_pixel)
             in.notes.push_back({"metres_per_pixel", number(o.metres_per_pixel) + " overrides flight.json's metres_per_pixel " + number(info.metres_per_pixel)});
         if (hfov > 0 && std::fabs(hfov - info.camera.hfov_deg) > 1e-9)
             in.notes.push_back({o.focal_px > 0 ? "focal_px" : "hfov_deg",
@@ -88,7 +91,7 @@ AirInputs resolve_air_inputs(const AirInputOptions& o) {
         if (o.metres_per_pixel > 0 && std::fabs(o.metres_per_pixel - g.metres_per_pixel) > 1e-6 * g.metres_per_pixel)
             throw FieldError("metres_per_pixel", number(o.metres_per_pixel) + " contradicts " + in.map_path + ", whose geotransform gives " +
                                                      number(g.metres_per_pixel) + " m/px; leave `metres_per_pixel` out");
-        if (in.has_flight_json && std::fabs(info.metres_per_pixel - g.metres_per_pixel) > 1e-6 * g.metres_per_pixel)
+        if (in.has_flight_json && info.metres_per_pixel > 0 && std::fabs(info.metres_per_pixel - g.metres_per_pixel) > 1e-6 * g.metres_per_pixel)
             in.notes.push_back({"", in.map_path + "'s geotransform (" + number(g.metres_per_pixel) + " m/px) overrides flight.json's metres_per_pixel " +
                                         number(info.metres_per_pixel)});
         auto geo = std::make_shared<io::GeoReference>(g, in.map_path);

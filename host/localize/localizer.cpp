@@ -68,12 +68,14 @@ Estimate Localizer::step(const Observation& o) {
     if (!started_) {
         if (std::isnan(config_.start_x))
             throw Error("localizer: start_x, start_y: required (the last known position, map pixels) before the first step");
-        start(config_.start_x, config_.start_y, std::isnan(config_.start_heading_rad) ? o.heading_rad : config_.start_heading_rad);
+        const bool compass = config_.filter.heading == filter::HeadingMode::Compass;
+        start(config_.start_x, config_.start_y, std::isnan(config_.start_heading_rad) && compass ? o.heading_rad : config_.start_heading_rad);
     }
     Estimate e;
     filter::FilterInput in;
     in.odometry_east_m = o.odometry_east_m, in.odometry_north_m = o.odometry_north_m;
     in.heading_rad = o.heading_rad;
+    in.odometry_yaw_rad = o.odometry_yaw_rad;
     in.frame = o.frame.empty() ? GrayView{} : o.frame;
     in.map_px_per_camera_px = o.map_px_per_camera_px;
     GrayImage level;  // the nadir view of a tilted frame
@@ -97,6 +99,7 @@ Estimate Localizer::step(const Observation& o) {
     e.x = rep.estimate.x, e.y = rep.estimate.y, e.yaw = rep.estimate.yaw;
     e.best_x = rep.estimate.best_x, e.best_y = rep.estimate.best_y, e.best_yaw = rep.estimate.best_yaw, e.best_ncc = rep.estimate.best_ncc;
     e.spread_m = rep.estimate.spread_px * mpp_;
+    e.yaw_sd = rep.estimate.yaw_sd;
     e.particles = rep.particles, e.off_map = rep.off_map;
     e.frame_missing = rep.frame_missing;
     e.odometry_lost = rep.odometry_lost, e.reinitialised = rep.reinitialised;

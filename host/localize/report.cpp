@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "trn/detail/angles.hpp"
 #include "trn/error.hpp"
 #include "trn/io/atomic_file.hpp"
 #include "trn/io/gnuplot.hpp"
@@ -39,13 +40,14 @@ bool has_errors(const LocalizationSummary& s) { return std::isfinite(s.filter_me
 
 }  // namespace
 
-void write_rows_csv(const std::string& path, const std::vector<LocalizationRow>& rows) {
+void write_rows_csv(const std::string& path, const std::vector<LocalizationRow>& rows, bool heading_columns) {
     io::AtomicFile file(path);
     std::ostream& out = file.stream();
     out.precision(10);
     out << "frame,time_s,distance_m,truth_x,truth_y,odometry_x,odometry_y,estimate_x,estimate_y,estimate_yaw,best_x,best_y,"
            "error_m,odometry_error_m,particles,off_map,score_ms,step_ms,odometry_lost,frame_missing,reinitialised,tilt_deg,too_oblique,"
-           "est_lat,est_lon,lock_state,lock_contrast,lock_drift_m,lock_drift_bound_m,lock_lost_events,lock_widen_radius_m,odometry_source\n";
+           "est_lat,est_lon,lock_state,lock_contrast,lock_drift_m,lock_drift_bound_m,lock_lost_events,lock_widen_radius_m,odometry_source"
+        << (heading_columns ? ",truth_yaw_deg,estimate_yaw_deg,estimate_yaw_sd_deg,yaw_error_deg\n" : "\n");
     std::size_t lost_events = 0;  // running count, so a plot or a grep sees when each loss happened
     for (const LocalizationRow& r : rows) {
         lost_events += r.lock.lost;
@@ -55,7 +57,11 @@ void write_rows_csv(const std::string& path, const std::vector<LocalizationRow>&
             << r.step_ms << ',' << r.odometry_lost << ',' << r.frame_missing << ',' << r.reinitialised << ',' << r.tilt_deg << ','
             << r.too_oblique << ',' << LatLonCell{r.estimate_lat} << ',' << LatLonCell{r.estimate_lon} << ',' << lock_state_name(r.lock) << ','
             << Cell{r.lock.contrast} << ',' << Cell{r.lock.drift_m} << ',' << Cell{r.lock.drift_bound_m} << ',' << lost_events << ','
-            << (r.lock.lost ? r.lock.widen_radius_m : 0.0) << ',' << r.odometry_source << '\n';
+            << (r.lock.lost ? r.lock.widen_radius_m : 0.0) << ',' << r.odometry_source;
+        if (heading_columns)
+            out << ',' << Cell{r.truth_yaw / kDeg} << ',' << r.estimate_yaw / kDeg << ',' << r.estimate_yaw_sd / kDeg << ','
+                << Cell{wrap_angle(r.estimate_yaw - r.truth_yaw) / kDeg};
+        out << '\n';
     }
     file.commit();
 }
@@ -67,6 +73,16 @@ std::vector<std::pair<std::string, double>> error_numbers(const LocalizationSumm
             {"odometry_final_error_m", s.odometry_final_error_m},
             {"filter_error_slope_m_per_km", s.filter_error_slope_m_per_km},
             {"odometry_error_slope_m_per_km", s.odometry_error_slope_m_per_km}};
+}
+
+std::vector<std::pair<std::string, double>> heading_numbers(const LocalizationSummary& s) {
+    return {{"mean_yaw_error_deg", s.mean_yaw_error_deg},
+            {"final_yaw_error_deg", s.final_yaw_error_deg},
+            {"final_yaw_sd_deg", s.final_yaw_sd_deg},
+            {"converged_yaw_sd_deg", kConvergedYawSdDeg},
+            {"converged_from_frame", s.converged_from_frame},
+            {"converged_mean_error_m", s.converged_mean_error_m},
+            {"converged_mean_yaw_error_deg", s.converged_mean_yaw_error_deg}};
 }
 
 void write_summary_json(const std::string& path, const LocalizationSummary& s, const std::map<std::string, std::string>& strings,

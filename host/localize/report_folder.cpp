@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "trn/error.hpp"
+#include "trn/io/atomic_file.hpp"
 #include "trn/io/output_folder.hpp"
 #include "trn/localize/report.hpp"
 
@@ -38,14 +40,30 @@ void write_localization_report(const LocalizationResult& result, const std::stri
     for (const auto& [k, v] : r.numbers) numbers[k] = v;
     numbers = with_lock_numbers(result.summary, std::move(numbers));
     std::erase_if(numbers, [](const auto& kv) { return std::isnan(kv.second); });  // options not given
+    const bool compassless = run.heading == "none";
+    if (compassless) {  // the heading is an output: its figures, null when unknown (no truth, never converged)
+        strings["heading"] = "none (compass-less: yaw estimated, turned by the odometry's rotation)";
+        for (const auto& [k, v] : heading_numbers(result.summary)) numbers[k] = v;
+        char line[240];
+        std::snprintf(line, sizeof line, "heading:      none; final yaw sd %.1f deg, mean yaw error %.1f deg; converged (yaw sd < %.0f deg and a lock fix) from frame %.0f, "
+                      "mean error since %.2f m\n",
+                      result.summary.final_yaw_sd_deg, result.summary.mean_yaw_error_deg, kConvergedYawSdDeg, result.summary.converged_from_frame,
+                      result.summary.converged_mean_error_m);
+        after_summary = line + after_summary;
+    }
 
     // One run's files: the previous run's are removed first (a failed rerun never leaves new
     // results beside old plots), and a second run into the folder waits for this one.
     io::open_output_folder(folder, r.owner, r.force, r.folder_name, io::Rerun::ReplacesPrevious);
-    write_rows_csv(folder + "/localization.csv", result.rows);
+    write_rows_csv(folder + "/localization.csv", result.rows, compassless);
     write_summary_json(folder + "/summary.json", result.summary, strings, numbers);
+    for (const auto& [name, text] : r.files) {
+        if (name.empty() || name.find('/') != std::string::npos || name[0] == '.') throw Error("report file name '" + name + "' is not a plain name");
+        io::write_file_atomic(folder + "/" + name, text, io::Destination::Derived);
+    }
     os << format_summary(result.summary) << format_lock_summary(result.summary) << after_summary << "summary JSON: " << folder
        << "/summary.json\nper-step CSV: " << folder << "/localization.csv\n";
+    for (const auto& [name, text] : r.files) os << name << ": " << folder << "/" << name << "\n";
     if (r.plots) {
         const PlotFiles plots = plot_run(folder, result.rows, result.summary, map, metres_per_pixel, r.plot_title);
         os << "plots: " << plots.trajectory_png << "\n";

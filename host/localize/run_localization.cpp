@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "trn/detail/angles.hpp"
 #include "trn/error.hpp"
 #include "trn/field_error.hpp"
 #include "trn/localize/air_frames.hpp"
@@ -31,10 +32,13 @@ LocalizationResult run_localization(filter::FlightSource& source, Localizer& loc
     if (localizer.started()) throw Error("run_localization: the Localizer has already been started; give it a fresh one");
     LocalizationResult result;
     result.run = describe(localizer);
+    result.run.heading = filter::to_string(localizer.config().filter.heading);
     const LocalizerConfig& cfg = localizer.config();
     const double mpp = localizer.metres_per_pixel();
     filter::FlightSample s;
     OdometryIncrements odometry;
+    const bool compassless = cfg.filter.heading == filter::HeadingMode::None;
+    CompasslessOdometry compassless_odometry;
     double start_x = cfg.start_x, start_y = cfg.start_y;
     double prev_tx = 0, prev_ty = 0, distance_m = 0;
     const std::size_t hint = source.frames_hint();
@@ -46,7 +50,7 @@ LocalizationResult run_localization(filter::FlightSource& source, Localizer& loc
                     throw FieldError("start_x, start_y", "required: the flight has no ground truth (MapX/MapY) in its first frame");
                 start_x = s.truth_x, start_y = s.truth_y;
             }
-            localizer.start(start_x, start_y, std::isnan(cfg.start_heading_rad) ? s.heading_rad : cfg.start_heading_rad);
+            localizer.start(start_x, start_y, std::isnan(cfg.start_heading_rad) && !compassless ? s.heading_rad : cfg.start_heading_rad);
             prev_tx = s.truth_x, prev_ty = s.truth_y;
             result.run.start_x = start_x, result.run.start_y = start_y;
         }
@@ -55,6 +59,11 @@ LocalizationResult run_localization(filter::FlightSource& source, Localizer& loc
         const OdometryIncrements::Step step = odometry.next(s.odometry_east_m, s.odometry_north_m);
         o.odometry_east_m = step.east_m, o.odometry_north_m = step.north_m;
         o.heading_rad = s.heading_rad;
+        if (compassless) {  // the step in the previous frame's axes, the rotation from the odometry's yaw (air_frames.hpp)
+            const CompasslessOdometry::Step c = compassless_odometry.next(step, s.odometry_yaw_rad);
+            o.heading_rad = NAN;
+            o.odometry_east_m = c.right_m, o.odometry_north_m = c.forward_m, o.odometry_yaw_rad = c.rotation_rad;
+        }
         if (!s.image.pixels.empty()) o.frame = s.image.view();
         o.map_px_per_camera_px = s.map_px_per_camera_px;  // the source has levelled the frame already
         const Estimate e = localizer.step(o);
@@ -71,7 +80,8 @@ LocalizationResult run_localization(filter::FlightSource& source, Localizer& loc
         row.distance_m = distance_m;
         row.odometry_x = start_x + (odometry.last_east_m() - odometry.origin_east_m()) / mpp;
         row.odometry_y = start_y - (odometry.last_north_m() - odometry.origin_north_m()) / mpp;
-        row.estimate_x = e.x, row.estimate_y = e.y, row.estimate_yaw = e.yaw;
+        row.estimate_x = e.x, row.estimate_y = e.y, row.estimate_yaw = e.yaw, row.estimate_yaw_sd = e.yaw_sd;
+        if (s.has_truth) row.truth_yaw = s.truth_yaw;
         row.best_x = e.best_x, row.best_y = e.best_y;
         if (s.has_truth) {
             row.error_m = std::hypot(row.estimate_x - s.truth_x, row.estimate_y - s.truth_y) * mpp;
@@ -116,16 +126,22 @@ LocalizationResult run_on_map(const LocalizationSpec& spec, GrayView map, GrayVi
         info.filter_rate_hz = fps / info.stride;
         filter::AirFlightSource source(folder, air->camera, metres_per_pixel, fps, info.stride, (info.frames + info.stride - 1) / info.stride,
                                        {map.width, map.height}, air->max_tilt_deg);
-        if (std::isnan(cfg.start_x)) {  // the start defaults to the first row's truth: refuse before the run when it has none
+        {
             sim::AirReader first(folder);
             sim::AirRecord r;
-            if (first.next(r) && !std::isfinite(r.map_x))
-                throw FieldError("start_x, start_y", "required: " + folder + "/metadata.csv has no ground truth (empty MapX,MapY) in its first row; give `start_x, start_y`");
+            const bool has_row = first.next(r);
+            // The start defaults to the first row's truth: refuse before the run when it has none.
+            if (std::isnan(cfg.start_x) && has_row && !std::isfinite(r.map_x))
+                throw FieldError("start_x, start_y", "required: " + folder + "/metadata.csv has no ground truth (empty MapX,MapY) in its first row; give `start_x, start_y`" +
+                                                         (std::isfinite(r.latitude_deg) ? " (or `start_from_gps`)" : ""));
+            // Photos (import-photos) have no recorded odometry: empty SvoX..Z would make every step "lost".
+            if (spec.odometry == OdometryKind::Recorded && has_row && std::isnan(r.svo_m.x))
+                throw FieldError("odometry", folder + "/metadata.csv has no recorded odometry (empty SvoX..SvoZ, as camera photos have); use visual odometry (computed from the frames)");
         }
         if (hooks.warning)
             for (const std::string& w : source.warnings()) hooks.warning(w);
         cfg.camera_hfov_deg = air->camera.hfov_deg, cfg.max_tilt_deg = air->max_tilt_deg;
-        filter::VisualOdometrySource visual(source, metres_per_pixel);
+        filter::VisualOdometrySource visual(source, metres_per_pixel, {}, cfg.filter.heading == filter::HeadingMode::None);
         try {
             finish(source, visual);
         } catch (const FieldError&) {
@@ -144,7 +160,7 @@ LocalizationResult run_on_map(const LocalizationSpec& spec, GrayView map, GrayVi
         filter::SimulatedFlightSource simulated(*sim_flight.world, sim_flight.flight, info.stride);
         info.frames = simulated.frames_hint() * info.stride;
         cfg.camera_hfov_deg = sim_flight.flight.camera.hfov_deg;
-        filter::VisualOdometrySource visual(simulated, sim_flight.world->metres_per_pixel);
+        filter::VisualOdometrySource visual(simulated, sim_flight.world->metres_per_pixel, {}, cfg.filter.heading == filter::HeadingMode::None);
         finish(simulated, visual);
     }
     if (spec.to_latlon)  // the estimates also as latitude / longitude

@@ -1,8 +1,10 @@
 #include "trn/localize/localization.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
+#include "trn/detail/angles.hpp"
 #include "trn/error.hpp"
 
 namespace trn::localize {
@@ -63,6 +65,25 @@ LocalizationSummary summarise(const std::vector<LocalizationRow>& rows, const fi
         s.filter_error_slope_m_per_km = f.slope, s.filter_error_intercept_m = f.intercept;
         s.odometry_error_slope_m_per_km = o.slope, s.odometry_error_intercept_m = o.intercept;
     }
+    // The heading estimate.
+    s.final_yaw_sd_deg = rows.back().estimate_yaw_sd / kDeg;
+    double yaw_sum = 0, conv_err = 0, conv_yaw = 0;
+    std::size_t yaw_n = 0, conv_n = 0, conv_yaw_n = 0;
+    bool converged = false;
+    // Converged: the heading and the position both confident by the run's own evidence, no truth
+    // used: yaw sd below kConvergedYawSdDeg and the lock monitor's fix (yaw alone when the monitor never assessed a step).
+    const bool monitored = std::any_of(rows.begin(), rows.end(), [](const LocalizationRow& r) { return !std::isnan(r.lock.drift_m); });
+    for (const LocalizationRow& r : rows) {
+        const double yaw_error = std::isfinite(r.truth_yaw) ? std::abs(wrap_angle(r.estimate_yaw - r.truth_yaw)) / kDeg : NAN;
+        if (std::isfinite(yaw_error)) yaw_sum += yaw_error, ++yaw_n, s.final_yaw_error_deg = yaw_error;
+        if (!converged && r.estimate_yaw_sd / kDeg < kConvergedYawSdDeg && (r.lock.confident || !monitored)) converged = true, s.converged_from_frame = static_cast<double>(r.frame);
+        if (!converged) continue;
+        if (std::isfinite(r.error_m)) conv_err += r.error_m, ++conv_n;
+        if (std::isfinite(yaw_error)) conv_yaw += yaw_error, ++conv_yaw_n;
+    }
+    if (yaw_n) s.mean_yaw_error_deg = yaw_sum / yaw_n;
+    if (conv_n) s.converged_mean_error_m = conv_err / conv_n;
+    if (conv_yaw_n) s.converged_mean_yaw_error_deg = conv_yaw / conv_yaw_n;
     return s;
 }
 

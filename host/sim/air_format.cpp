@@ -31,10 +31,31 @@ double* numeric_field(AirRecord& r, std::size_t i) {
     return fields[i];
 }
 
+// Columns a flight may lack, each group as a whole (kColumns indices, first..last).
+struct ColumnGroup {
+    std::size_t first, last;
+    const char* name;
+};
+constexpr ColumnGroup kOptionalGroups[] = {
+    {1, 2, "Latitude,Longitude"}, {4, 7, "ImuX..ImuW"},           {8, 10, "PoseX..PoseZ"},
+    {11, 14, "OrientationX..OrientationW"}, {15, 16, "MapX,MapY"}, {17, 19, "SvoX..SvoZ"}};
+
+const ColumnGroup* group_of(std::size_t c) {
+    for (const ColumnGroup& g : kOptionalGroups)
+        if (c >= g.first && c <= g.last) return &g;
+    return nullptr;
+}
+
 std::string trim(std::string_view s) {
     const auto b = s.find_first_not_of(" \t\r");
     if (b == std::string_view::npos) return {};
     return std::string(s.substr(b, s.find_last_not_of(" \t\r") - b + 1));
+}
+
+bool group_empty(const ColumnGroup& g, const std::vector<std::string>& fields, const std::vector<int>& column_of) {
+    for (std::size_t c = g.first; c <= g.last; ++c)
+        if (!fields[column_of[c]].empty()) return false;
+    return true;
 }
 
 // Splits one CSV line; fields may be double-quoted with "" for a quote inside. False when a quote
@@ -166,6 +187,7 @@ double heading_from_quaternion(const Quaternion& q) {
 }
 
 RollPitch roll_pitch_from_quaternion(const Quaternion& in) {
+    if (std::isnan(in.w)) return {0, 0};  // no attitude measured (empty ImuX..W): taken as level
     const double n = std::sqrt(in.x * in.x + in.y * in.y + in.z * in.z + in.w * in.w);  // the reader allows 0.9-1.1
     const Quaternion q{in.x / n, in.y / n, in.z / n, in.w / n};
     // ZYX Euler angles of the quaternion; attitude_quaternion stores nose-up pitch as -pitch.
@@ -202,7 +224,7 @@ void write_flight_info(const std::string& path, const FlightInfo& info) {
     nlohmann::json j;
     j["scenario"] = info.scenario;
     j["map_file"] = info.map_file;
-    j["metres_per_pixel"] = info.metres_per_pixel;
+    if (info.metres_per_pixel > 0) j["metres_per_pixel"] = info.metres_per_pixel;  // 0: not stated (no map, or a GeoTIFF's own)
     if (info.origin) j["origin"] = {{"latitude_deg", info.origin->latitude_deg}, {"longitude_deg", info.origin->longitude_deg}};
     j["camera"] = {{"width", info.camera.width}, {"height", info.camera.height}, {"hfov_deg", info.camera.hfov_deg}};
     j["fps"] = info.fps;
@@ -210,6 +232,7 @@ void write_flight_info(const std::string& path, const FlightInfo& info) {
     j["rendered_year"] = info.rendered_year;
     j["seed"] = info.seed;
     if (info.frames) j["frames"] = info.frames;
+    if (!info.latlon_source.empty()) j["latlon_source"] = info.latlon_source;
     io::add_provenance(j);
     io::write_file_atomic(path, j.dump(2) + "\n");
 }
@@ -264,7 +287,9 @@ FlightInfo read_flight_info(const std::string& path) {
         const nlohmann::json j = nlohmann::json::parse(text);
         info.scenario = j.value("scenario", "");
         info.map_file = j.value("map_file", "");
-        info.metres_per_pixel = real_field(j, "metres_per_pixel", 0, 1000, Ends::open_low, where);
+        // Left out (0): the map's resolution comes with the map (a GeoTIFF's, or localize's --mpp);
+        // import-photos writes such folders.
+        info.metres_per_pixel = j.contains("metres_per_pixel") ? real_field(j, "metres_per_pixel", 0, 1000, Ends::open_low, where) : 0;
         if (j.contains("origin"))
             info.origin = GeoOrigin{real_field(j["origin"], "latitude_deg", -90, 90, Ends::closed, where + "origin."),
                                     real_field(j["origin"], "longitude_deg", -180, 180, Ends::closed, where + "origin.")};
@@ -277,6 +302,12 @@ FlightInfo read_flight_info(const std::string& path) {
                 throw Error(where + key + " " + std::to_string(*year) + " must be 0 (unknown) or a year from 1900");
         info.seed = uint_field(j, "seed", std::numeric_limits<std::uint64_t>::max(), where);
         info.frames = static_cast<std::size_t>(uint_field(j, "frames", 100'000'000, where));
+        if (j.contains("latlon_source")) {
+            const nlohmann::json& v = j.at("latlon_source");
+            if (!v.is_string() || (v.get<std::string>() != "truth" && v.get<std::string>() != kLatLonCameraGps))
+                throw Error(where + "latlon_source " + shown(v) + " must be \"truth\" or \"" + kLatLonCameraGps + "\"");
+            info.latlon_source = v.get<std::string>();
+        }
     } catch (const nlohmann::json::exception& e) {
         throw Error(path + ": not a valid flight description (" + io::quote_input(e.what(), 200) + ")");
     }
@@ -286,26 +317,48 @@ FlightInfo read_flight_info(const std::string& path) {
 
 // ---- writer ----
 
-AirWriter::AirWriter(const std::string& folder) : folder_(folder) {
+AirWriter::AirWriter(const std::string& folder, std::vector<std::string> extra_columns)
+    : folder_(folder), extra_columns_(std::move(extra_columns)) {
     std::error_code ec;
     std::filesystem::create_directories(folder, ec);
     if (ec) throw Error(folder + ": cannot create folder (" + ec.message() + ")");
+    for (const std::string& c : extra_columns_)
+        if (std::find(kColumns.begin(), kColumns.end(), c) != kColumns.end() || c.empty())
+            throw Error(folder + "/metadata.csv: extra column '" + c + "' is empty or one of the AIR columns");
     for (std::size_t i = 0; i < kColumns.size(); ++i) csv_ += (i ? "," : "") + kColumns[i];
+    for (const std::string& c : extra_columns_) csv_ += "," + quote_if_needed(c);
     csv_ += "\n";
 }
 
-void AirWriter::write(const AirRecord& r, GrayView image) {
+void AirWriter::write(const AirRecord& r, GrayView image, const std::vector<std::string>& extra) {
     if (closed_) throw Error(folder_ + "/metadata.csv: written after close()");
     if (r.filename.empty()) throw Error(folder_ + "/metadata.csv: a record has no file name");
+    if (extra.size() != extra_columns_.size())
+        throw Error(folder_ + "/metadata.csv: a record has " + std::to_string(extra.size()) + " extra fields for " +
+                    std::to_string(extra_columns_.size()) + " extra columns");
+    AirRecord copy = r;
+    const auto check_group = [&](std::size_t first, std::size_t last) {  // NaN is an empty cell: the whole group or none
+        std::size_t nans = 0;
+        for (std::size_t c = first; c <= last; ++c) nans += std::isnan(*numeric_field(copy, c));
+        if (nans && nans != last - first + 1)
+            throw Error(folder_ + "/metadata.csv: " + r.filename + ": " + kColumns[first] + ".." + kColumns[last] +
+                        " are partly NaN; a group of columns is given whole or left empty");
+    };
+    for (const ColumnGroup& g : kOptionalGroups) check_group(g.first, g.last);
     if (!image.empty()) save_gray(folder_ + "/" + r.filename, image);
-    char buf[768];
-    std::snprintf(buf, sizeof buf,
-                  ",%.10f,%.10f,%.4f,%.9f,%.9f,%.9f,%.9f,%.4f,%.4f,%.4f,%.9f,%.9f,%.9f,%.9f,%.3f,%.3f,%.4f,%.4f,%.4f\n",
-                  r.latitude_deg, r.longitude_deg, r.relative_altitude_m, r.imu.x, r.imu.y, r.imu.z, r.imu.w, r.pose_m.x,
-                  r.pose_m.y, r.pose_m.z, r.orientation.x, r.orientation.y, r.orientation.z, r.orientation.w, r.map_x,
-                  r.map_y, r.svo_m.x, r.svo_m.y, r.svo_m.z);
+    static const char* const kFormats[] = {nullptr, "%.10f", "%.10f", "%.4f", "%.9f", "%.9f", "%.9f", "%.9f", "%.4f", "%.4f",
+                                           "%.4f",  "%.9f",  "%.9f",  "%.9f", "%.9f", "%.3f", "%.3f", "%.4f", "%.4f", "%.4f"};
     csv_ += quote_if_needed(r.filename);
-    csv_ += buf;
+    char buf[64];
+    for (std::size_t c = 1; c < kColumns.size(); ++c) {
+        const double v = *numeric_field(copy, c);
+        csv_ += ',';
+        if (std::isnan(v)) continue;  // an empty cell: not measured (air_format.hpp)
+        std::snprintf(buf, sizeof buf, kFormats[c], v);
+        csv_ += buf;
+    }
+    for (const std::string& e : extra) csv_ += "," + quote_if_needed(e);
+    csv_ += "\n";
 }
 
 void AirWriter::close() {
@@ -360,26 +413,27 @@ bool AirMetadataParser::next(AirRecord& r) {
         r = AirRecord{};
         r.filename = fields[column_of_[0]];
         if (r.filename.empty()) throw Error(at + "Filename is empty");
-        // MapX/MapY are the ground truth: a real flight may have none, then both cells are empty
-        // (NaN here); one without the other is a broken row.
-        constexpr std::size_t map_x_col = 15, map_y_col = 16;  // kColumns order
-        const bool no_truth = fields[column_of_[map_x_col]].empty() && fields[column_of_[map_y_col]].empty();
+        // Groups of columns a flight may not have (air_format.hpp): all cells of a group empty is
+        // NaN; one empty cell in a group otherwise given is a broken row.
         for (std::size_t c = 1; c < kColumns.size(); ++c) {
             const std::string& f = fields[column_of_[c]];
-            if (no_truth && (c == map_x_col || c == map_y_col)) {
+            const ColumnGroup* g = group_of(c);
+            if (g && group_empty(*g, fields, column_of_)) {
                 *numeric_field(r, c) = NAN;
                 continue;
             }
             double v = 0;
             const auto [ptr, ec] = std::from_chars(f.data(), f.data() + f.size(), v);
             if (f.empty() || ec != std::errc() || ptr != f.data() + f.size())
-                throw Error(at + kColumns[c] + " '" + io::quote_input(f, 40) + "' is not a number");
+                throw Error(at + kColumns[c] + " '" + io::quote_input(f, 40) + "' is not a number" +
+                            (f.empty() && g ? " (" + std::string(g->name) + " are given all or left all empty)" : ""));
             if (!std::isfinite(v)) throw Error(at + kColumns[c] + " is not finite");
             if (const std::string why = implausible(c, v); !why.empty()) throw Error(at + why);
             *numeric_field(r, c) = v;
         }
         for (const auto& [q, prefix] : {std::pair{&r.imu, "Imu"}, std::pair{&r.orientation, "Orientation"}})
-            if (const std::string why = not_unit(*q, prefix); !why.empty()) throw Error(at + why);
+            if (!std::isnan(q->w))  // NaN: the group is empty (not measured)
+                if (const std::string why = not_unit(*q, prefix); !why.empty()) throw Error(at + why);
         check_order(r.filename, at);
         return true;
     }

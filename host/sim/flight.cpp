@@ -130,6 +130,7 @@ bool FlightSimulator::next(FlightFrame& f) {
         f.odometry_m = odometry_.step(delta, dt, st.yaw_rate_rad_s);
     }
     f.odometry_m.z += altitude_m(0);  // odometry is initialised with the first height, then drifts
+    f.odometry_yaw_rad = wrap_angle(f.truth.yaw_rad + odometry_.heading_error_rad());  // its track is turned by the same error
     f.magnetometer_heading_rad = magnetometer_.read(f.truth.yaw_rad);
     f.baro_altitude_m = barometer_.read(alt, i == 0 ? 0 : dt);
     previous_ = st;

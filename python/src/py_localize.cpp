@@ -22,6 +22,7 @@
 #include "trn/localize/air_inputs.hpp"
 #include "trn/localize/localization.hpp"
 #include "trn/localize/localizer.hpp"
+#include "trn/localize/report.hpp"
 #include "trn/localize/report_folder.hpp"
 
 namespace trn::py {
@@ -58,8 +59,14 @@ localize::LocalizerConfig make_config(std::optional<std::pair<double, double>> s
                                       std::optional<double> camera_hfov_deg, double max_tilt_deg, int template_width, double sparse,
                                       std::uint64_t seed, const std::string& conversion, const std::string& sampling,
                                       std::size_t min_particles, std::size_t max_particles, std::size_t particles, double init_radius_m,
-                                      double reinit_radius_m) {
+                                      double reinit_radius_m, const std::string& heading, std::optional<double> start_heading_sd_deg) {
     localize::LocalizerConfig c;
+    try {
+        c.filter.heading = filter::parse_heading_mode(heading);
+    } catch (const Error& e) {
+        throw pyb::value_error(std::string("heading: ") + e.what());
+    }
+    if (start_heading_sd_deg) c.filter.init_heading_sd_deg = *start_heading_sd_deg;
     if (start) c.start_x = start->first, c.start_y = start->second;
     if (start_heading_rad) c.start_heading_rad = *start_heading_rad;
     if (camera_hfov_deg) c.camera_hfov_deg = *camera_hfov_deg;
@@ -95,13 +102,15 @@ pyb::dict estimate_dict(const localize::Estimate& e) {
     d["lock_state"] = localize::lock_state_name(e.lock);
     d["lock_contrast"] = e.lock.contrast, d["lock_drift_m"] = e.lock.drift_m;
     d["score_ms"] = e.score_ms, d["step_ms"] = e.step_ms;
+    d["yaw_sd"] = e.yaw_sd;
     return d;
 }
 
 pyb::dict step(PyLocalizer& l, const pyb::object& frame, std::optional<std::pair<double, double>> odometry,
                std::optional<double> heading_rad, std::optional<double> altitude_agl_m, std::optional<double> scale,
-               std::optional<std::pair<double, double>> attitude) {
+               std::optional<std::pair<double, double>> attitude, std::optional<double> odometry_yaw_rad) {
     localize::Observation o;
+    if (odometry_yaw_rad) o.odometry_yaw_rad = *odometry_yaw_rad;
     BorrowedGray image;
     if (!frame.is_none()) {
         image = gray_view(frame, "frame");
@@ -140,6 +149,14 @@ pyb::dict air_row(const localize::AirFrame& f) {
     step["odometry"] = std::isfinite(f.odometry_step.east_m) ? pyb::object(pyb::make_tuple(f.odometry_step.east_m, f.odometry_step.north_m))
                                                              : pyb::object(pyb::none());
     d["step"] = step;
+    pyb::dict nc;  // the same for heading="none": no heading, odometry in the previous frame's axes, its rotation
+    for (auto item : step) nc[item.first] = item.second;
+    nc["heading_rad"] = pyb::none();
+    nc["odometry"] = std::isfinite(f.compassless_step.forward_m)
+                         ? pyb::object(pyb::make_tuple(f.compassless_step.right_m, f.compassless_step.forward_m))
+                         : pyb::object(pyb::none());
+    nc["odometry_yaw_rad"] = maybe(f.compassless_step.rotation_rad);
+    d["step_without_compass"] = nc;
     d["truth"] = std::isfinite(f.truth_x) ? pyb::object(pyb::make_tuple(f.truth_x, f.truth_y)) : pyb::object(pyb::none());
     return d;
 }
@@ -174,6 +191,8 @@ pyb::dict columns(const std::vector<localize::LocalizationRow>& rows) {
     d["estimate_x"] = column([](const Row& r) { return r.estimate_x; });
     d["estimate_y"] = column([](const Row& r) { return r.estimate_y; });
     d["estimate_yaw"] = column([](const Row& r) { return r.estimate_yaw; });
+    d["estimate_yaw_sd"] = column([](const Row& r) { return r.estimate_yaw_sd; });
+    d["truth_yaw"] = column([](const Row& r) { return r.truth_yaw; });
     d["error_m"] = column([](const Row& r) { return r.error_m; });
     d["odometry_error_m"] = column([](const Row& r) { return r.odometry_error_m; });
     d["particles"] = column([](const Row& r) { return static_cast<double>(r.particles); });
@@ -203,7 +222,8 @@ pyb::dict localize_flight(const std::string& dataset, const std::string& map, co
                           std::optional<double> start_heading_rad, const std::string& odometry, double max_tilt_deg, int template_width,
                           double sparse, std::uint64_t seed, const std::string& conversion, const std::string& sampling,
                           std::size_t min_particles, std::size_t max_particles, std::size_t particles, double init_radius_m,
-                          double reinit_radius_m, const std::string& out, bool plots, int nodata) {
+                          double reinit_radius_m, const std::string& out, bool plots, const std::string& heading,
+                          std::optional<double> start_heading_sd_deg, int nodata) {
     if (odometry != "recorded" && odometry != "visual") throw pyb::value_error("odometry: 'recorded' (the folder's SvoX/SvoY) or 'visual', got '" + odometry + "'");
     return naming_keywords([&] {
         localize::AirInputOptions io;
@@ -215,7 +235,7 @@ pyb::dict localize_flight(const std::string& dataset, const std::string& map, co
         spec.rate_hz = rate_hz;
         spec.to_latlon = in.to_latlon;
         spec.localizer = make_config(start, start_heading_rad, std::nullopt, max_tilt_deg, template_width, sparse, seed, conversion, sampling,
-                                     min_particles, max_particles, particles, init_radius_m, reinit_radius_m);
+                                     min_particles, max_particles, particles, init_radius_m, reinit_radius_m, heading, start_heading_sd_deg);
         if (!backend) throw pyb::type_error("backend: a trnkit.Backend");
         localize::LocalizationResult r;
         {
@@ -234,6 +254,8 @@ pyb::dict localize_flight(const std::string& dataset, const std::string& map, co
         pyb::dict d;
         d["rows"] = columns(r.rows);
         d["summary"] = summary_dict(r.summary);
+        if (r.run.heading == "none")
+            for (const auto& [k, v] : localize::heading_numbers(r.summary)) d["summary"][pyb::str(k)] = maybe(v);
         d["backend"] = r.run.backend;
         d["metres_per_pixel"] = in.map.metres_per_pixel;
         d["start"] = pyb::make_tuple(r.run.start_x, r.run.start_y);
@@ -256,11 +278,11 @@ Same inputs, same seed: the same estimates as `trnkit localize`, bit for bit.)")
                           std::optional<double> start_heading_rad, std::optional<double> camera_hfov_deg, double max_tilt_deg,
                           int template_width, double sparse, std::uint64_t seed, const std::string& conversion, const std::string& sampling,
                           std::size_t min_particles, std::size_t max_particles, std::size_t particles, double init_radius_m,
-                          double reinit_radius_m) {
+                          double reinit_radius_m, const std::string& heading, std::optional<double> start_heading_sd_deg) {
                  auto l = std::make_shared<PyLocalizer>();
                  const localize::LocalizerConfig c =
                      make_config(start, start_heading_rad, camera_hfov_deg, max_tilt_deg, template_width, sparse, seed, conversion, sampling,
-                                 min_particles, max_particles, particles, init_radius_m, reinit_radius_m);
+                                 min_particles, max_particles, particles, init_radius_m, reinit_radius_m, heading, start_heading_sd_deg);
                  const BorrowedGray view = gray_view(map, "map");
                  const std::optional<BorrowedGray> mask =
                      valid.is_none() ? std::nullopt : std::optional<BorrowedGray>(gray_view(valid, "valid"));
@@ -280,21 +302,25 @@ Same inputs, same seed: the same estimates as `trnkit localize`, bit for bit.)")
              "map"_a, "metres_per_pixel"_a, "backend"_a, pyb::kw_only(), "valid"_a = pyb::none(), "start"_a, "start_heading_rad"_a = pyb::none(),
              "camera_hfov_deg"_a = pyb::none(), "max_tilt_deg"_a = 10.0, "template_width"_a = 160, "sparse"_a = 1.0, "seed"_a = 1,
              "conversion"_a = "logistic:0.2", "sampling"_a = "kld", "min_particles"_a = 100, "max_particles"_a = 2000, "particles"_a = 1000,
-             "init_radius_m"_a = 300.0, "reinit_radius_m"_a = 300.0,
+             "init_radius_m"_a = 300.0, "reinit_radius_m"_a = 300.0, "heading"_a = "compass", "start_heading_sd_deg"_a = pyb::none(),
              R"(map: 2-D uint8 array; metres_per_pixel: its resolution; backend: a trnkit.Backend (python/trnkit/_localize.py
 also takes a spec string and then owns the backend).
 start: (x, y) map pixels, the last known position. start_heading_rad: centre of the initial headings
 (None: the first step's heading). camera_hfov_deg: horizontal field of view, needed when steps give
-altitude_agl_m or attitude. The rest are the filter's settings (trn/filter/particle_filter.hpp).)")
+altitude_agl_m or attitude. heading: "compass" (each step's heading_rad sets the yaw) or "none"
+(no compass: yaw estimated, start_heading_rad None = uniform prior, else Gaussian with
+start_heading_sd_deg degrees; steps give odometry in the previous frame's axes (right_m, forward_m)
+and odometry_yaw_rad). The rest are the filter's settings (trn/filter/particle_filter.hpp).)")
         .def("step", &step, "frame"_a = pyb::none(), pyb::kw_only(), "odometry"_a = pyb::none(), "heading_rad"_a = pyb::none(),
-             "altitude_agl_m"_a = pyb::none(), "scale"_a = pyb::none(), "attitude"_a = pyb::none(),
+             "altitude_agl_m"_a = pyb::none(), "scale"_a = pyb::none(), "attitude"_a = pyb::none(), "odometry_yaw_rad"_a = pyb::none(),
              R"(One camera frame (2-D uint8, grey, as taken; None: no frame this step) and the sensors since the last step:
 odometry (east_m, north_m) displacement or None (lost); heading_rad compass heading or None;
 altitude_agl_m metres above the ground, or scale (map pixels per frame pixel); attitude (roll_rad,
-pitch_rad) or None (a tilted frame is warped to nadir, beyond max_tilt_deg not scored).
+pitch_rad) or None (a tilted frame is warped to nadir, beyond max_tilt_deg not scored);
+odometry_yaw_rad (heading="none"): the frame's rotation since the last step, clockwise, or None.
 Returns a dict: x, y, yaw (radians), best_*, spread_m, particles, off_map, frame_missing,
 too_oblique, tilt_deg, odometry_lost, reinitialised, lock_state, lock_contrast, lock_drift_m,
-score_ms, step_ms.)")
+score_ms, step_ms, yaw_sd (circular sd of the yaws, radians).)")
         .def(
             "close",
             [](PyLocalizer& l) {
@@ -327,7 +353,8 @@ altitude_agl_m, attitude).)");
           "hfov_deg"_a = 0.0, "fps"_a = 0.0, "rate_hz"_a = 5.0, "start"_a = pyb::none(), "start_heading_rad"_a = pyb::none(),
           "odometry"_a = "recorded", "max_tilt_deg"_a = 10.0, "template_width"_a = 160, "sparse"_a = 1.0, "seed"_a = 1,
           "conversion"_a = "logistic:0.2", "sampling"_a = "kld", "min_particles"_a = 100, "max_particles"_a = 2000, "particles"_a = 1000,
-          "init_radius_m"_a = 50.0, "reinit_radius_m"_a = 300.0, "out"_a = "", "plots"_a = false, "nodata"_a = -1,
+          "init_radius_m"_a = 50.0, "reinit_radius_m"_a = 300.0, "out"_a = "", "plots"_a = false, "heading"_a = "compass",
+          "start_heading_sd_deg"_a = pyb::none(), "nodata"_a = -1,
           R"(Localizes a whole AIR folder, as `trnkit localize` does (same defaults: a 50 m start prior).
 map: the map image (default: the one flight.json names); metres_per_pixel, hfov_deg, fps: when
 flight.json does not say (0: not given); start: (x, y) map pixels (None: the first row's truth);

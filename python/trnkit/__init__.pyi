@@ -153,7 +153,7 @@ def integrate_energy(log: str | os.PathLike[str] | PowerTrace, markers: str | os
 
 # --- localization (trn::localize): map pixels, RADIANS, metres -----------------------------------
 
-Estimate = dict[str, Any]  # x, y, yaw, best_*, spread_m, particles, off_map, frame_missing, ..., step_ms
+Estimate = dict[str, Any]  # x, y, yaw, best_*, spread_m, particles, off_map, frame_missing, ..., step_ms, yaw_sd
 
 class Localizer(AbstractContextManager["Localizer"]):
     def __init__(self, map: npt.NDArray[np.uint8], metres_per_pixel: float, backend: Backend | str = "cpu", *,
@@ -161,10 +161,11 @@ class Localizer(AbstractContextManager["Localizer"]):
                  start_heading_rad: float | None = None, camera_hfov_deg: float | None = None, max_tilt_deg: float = 10.0,
                  template_width: int = 160, sparse: float = 1.0, seed: int = 1, conversion: str = "logistic:0.2",
                  sampling: Literal["kld", "importance", "rejection"] = "kld", min_particles: int = 100, max_particles: int = 2000,
-                 particles: int = 1000, init_radius_m: float = 300.0, reinit_radius_m: float = 300.0) -> None: ...
+                 particles: int = 1000, init_radius_m: float = 300.0, reinit_radius_m: float = 300.0,
+                 heading: Literal["compass", "none"] = "compass", start_heading_sd_deg: float | None = None) -> None: ...
     def step(self, frame: npt.NDArray[np.uint8] | None = None, *, odometry: tuple[float, float] | None = None,
              heading_rad: float | None = None, altitude_agl_m: float | None = None, scale: float | None = None,
-             attitude: tuple[float, float] | None = None) -> Estimate: ...
+             attitude: tuple[float, float] | None = None, odometry_yaw_rad: float | None = None) -> Estimate: ...
     def close(self) -> None: ...
 
 def load_gray(path: str | os.PathLike[str]) -> npt.NDArray[np.uint8]: ...
@@ -175,4 +176,5 @@ def localize(*, dataset: str, map: str = "", backend: Backend | str = "cpu", met
              odometry: Literal["recorded", "visual"] = "recorded", max_tilt_deg: float = 10.0, template_width: int = 160,
              sparse: float = 1.0, seed: int = 1, conversion: str = "logistic:0.2", sampling: str = "kld", min_particles: int = 100,
              max_particles: int = 2000, particles: int = 1000, init_radius_m: float = 50.0, reinit_radius_m: float = 300.0,
-             out: str = "", plots: bool = False, nodata: int | None = None) -> dict[str, Any]: ...
+             out: str = "", plots: bool = False, heading: Literal["compass", "none"] = "compass",
+             start_heading_sd_deg: float | None = None, nodata: int | None = None) -> dict[str, Any]: ...

@@ -30,13 +30,18 @@ class Localizer:
     sampling ("kld", "importance", "rejection"), min_particles / max_particles (KLD bounds; the
     initial set is max_particles), particles (fixed count of importance / rejection sampling),
     init_radius_m (initial particles uniform within this radius of start), reinit_radius_m (after a
-    collapse): the filter's settings (trn/filter/particle_filter.hpp).
+    collapse): the filter's settings (trn/filter/particle_filter.hpp). heading: "compass" (each
+    step's heading_rad sets the particles' yaw) or "none" (no compass: yaw is estimated; the prior is
+    uniform with start_heading_rad None, else Gaussian around it with start_heading_sd_deg degrees;
+    each step then gives odometry=(right_m, forward_m) in the previous frame's axes and
+    odometry_yaw_rad, the frame's rotation since then: read_air_folder's step_without_compass).
 
     Use it in a `with` block or call close() to release the map and the backend."""
 
     def __init__(self, map, metres_per_pixel, backend="cpu", *, valid=None, start, start_heading_rad=None, camera_hfov_deg=None,
                  max_tilt_deg=10.0, template_width=160, sparse=1.0, seed=1, conversion="logistic:0.2", sampling="kld",
-                 min_particles=100, max_particles=2000, particles=1000, init_radius_m=300.0, reinit_radius_m=300.0):
+                 min_particles=100, max_particles=2000, particles=1000, init_radius_m=300.0, reinit_radius_m=300.0, heading="compass",
+                 start_heading_sd_deg=None):
         if start_heading_rad is not None and abs(start_heading_rad) > 2 * math.pi:
             warnings.warn(f"start_heading_rad={start_heading_rad} is beyond 2 pi: degrees? (math.radians converts)", YawUnitWarning,
                           stacklevel=2)
@@ -47,9 +52,10 @@ class Localizer:
             map, metres_per_pixel, backend, valid=valid, start=tuple(start), start_heading_rad=start_heading_rad, camera_hfov_deg=camera_hfov_deg,
             max_tilt_deg=max_tilt_deg, template_width=template_width, sparse=sparse, seed=seed, conversion=conversion,
             sampling=sampling, min_particles=min_particles, max_particles=max_particles, particles=particles,
-            init_radius_m=init_radius_m, reinit_radius_m=reinit_radius_m)
+            init_radius_m=init_radius_m, reinit_radius_m=reinit_radius_m, heading=heading, start_heading_sd_deg=start_heading_sd_deg)
 
-    def step(self, frame=None, *, odometry=None, heading_rad=None, altitude_agl_m=None, scale=None, attitude=None):
+    def step(self, frame=None, *, odometry=None, heading_rad=None, altitude_agl_m=None, scale=None, attitude=None,
+             odometry_yaw_rad=None):
         """One camera frame and what the other sensors said since the previous step.
 
         frame: 2-D uint8 array, grey, as taken (None: no frame this step; the particles are moved,
@@ -57,16 +63,19 @@ class Localizer:
         lost). heading_rad: compass heading in RADIANS, clockwise from north (None: none). The frame's
         scale: altitude_agl_m (metres above the ground, with camera_hfov_deg) or scale (map pixels
         per frame pixel). attitude: (roll_rad, pitch_rad) in RADIANS: a tilted frame is warped to
-        nadir; beyond max_tilt_deg it is not scored (too_oblique).
+        nadir; beyond max_tilt_deg it is not scored (too_oblique). odometry_yaw_rad (heading="none"):
+        the frame's rotation since the previous step in RADIANS, clockwise (None: unknown); odometry
+        is then (right_m, forward_m) in the previous frame's axes.
 
         Returns a dict: x, y, yaw (map pixels, radians), best_x, best_y, best_yaw, best_ncc (the
         best particle), spread_m, particles, off_map, frame_missing, too_oblique, tilt_deg (degrees),
         odometry_lost, reinitialised, lock_state ("none", "ok", "weak", "inconsistent", "fix",
-        "lost"), lock_contrast, lock_drift_m, score_ms, step_ms (milliseconds)."""
+        "lost"), lock_contrast, lock_drift_m, score_ms, step_ms (milliseconds), yaw_sd (circular sd of the
+        particles' yaws, radians: the heading's spread)."""
         if heading_rad is not None and abs(heading_rad) > 2 * math.pi:
             warnings.warn(f"heading_rad={heading_rad} is beyond 2 pi: degrees? (math.radians converts)", YawUnitWarning, stacklevel=2)
         return self._impl.step(frame, odometry=odometry, heading_rad=heading_rad, altitude_agl_m=altitude_agl_m, scale=scale,
-                               attitude=attitude)
+                               attitude=attitude, odometry_yaw_rad=odometry_yaw_rad)
 
     def close(self):
         """Releases the map on the device now (and the backend when it was made from a spec string); a
@@ -99,14 +108,16 @@ def read_air_folder(folder):
     A list of dicts: row (0-based), filename, image_error ("" when the frame loaded), truth ((x, y)
     map pixels, or None) and step: the keyword arguments of Localizer.step for that row (frame as
     taken, odometry since the previous row in metres, heading_rad, altitude_agl_m, attitude in
-    radians), so `loc.step(**row["step"])` feeds it."""
+    radians), so `loc.step(**row["step"])` feeds it; step_without_compass: the same for a
+    Localizer(heading="none") (no heading, odometry in the previous frame's axes, odometry_yaw_rad
+    from the ImuX..W heading's change)."""
     return _trnkit._read_air_folder(folder)
 
 
 def localize(*, dataset, map="", backend="cpu", metres_per_pixel=0.0, hfov_deg=0.0, fps=0.0, rate_hz=5.0, start=None,
              start_heading_rad=None, odometry="recorded", max_tilt_deg=10.0, template_width=160, sparse=1.0, seed=1,
              conversion="logistic:0.2", sampling="kld", min_particles=100, max_particles=2000, particles=1000, init_radius_m=50.0,
-             reinit_radius_m=300.0, out="", plots=False, nodata=None):
+             reinit_radius_m=300.0, out="", plots=False, heading="compass", start_heading_sd_deg=None, nodata=None):
     """Localizes a whole AIR folder as `trnkit localize` does (same defaults: a 50 m start prior).
 
     dataset: the AIR folder; map: the map image (default: the one flight.json names); backend: a
@@ -115,8 +126,11 @@ def localize(*, dataset, map="", backend="cpu", metres_per_pixel=0.0, hfov_deg=0
     rate_hz: filter steps per second; start: (x, y) map pixels (None: the first row's ground truth);
     start_heading_rad: RADIANS (None: the first heading); odometry: "recorded" (the folder's
     SvoX/SvoY) or "visual" (from the frames); out: a folder for localization.csv and summary.json
-    ("" none; plots=True adds the gnuplot plots); nodata: a map grey level (0..255) marking no-data
-    besides the map's transparency (None: alpha only). The other keywords are Localizer's.
+    ("" none; plots=True adds the gnuplot plots); heading="none": no compass (`trnkit localize
+    --heading none`; start_heading_rad / start_heading_sd_deg then the yaw prior; the rows add
+    estimate_yaw_sd and truth_yaw, the summary the heading figures). nodata: a map grey level
+    (0..255) marking no-data besides the map's transparency (None: alpha only). The other keywords are
+    Localizer's.
 
     Returns {"rows": dict of NumPy columns (frame, time_s, distance_m, truth_x, truth_y, odometry_x,
     odometry_y, estimate_x, estimate_y, estimate_yaw, error_m, odometry_error_m, particles,
@@ -129,7 +143,8 @@ def localize(*, dataset, map="", backend="cpu", metres_per_pixel=0.0, hfov_deg=0
                                  odometry=odometry, max_tilt_deg=max_tilt_deg, template_width=template_width, sparse=sparse, seed=seed,
                                  conversion=conversion, sampling=sampling, min_particles=min_particles, max_particles=max_particles,
                                  particles=particles, init_radius_m=init_radius_m, reinit_radius_m=reinit_radius_m, out=out,
-                                 plots=plots, nodata=-1 if nodata is None else nodata)
+                                 plots=plots, heading=heading, start_heading_sd_deg=start_heading_sd_deg,
+                                 nodata=-1 if nodata is None else nodata)
     finally:
         if own is not None:
             own.close()

@@ -481,6 +481,26 @@ static void test_localizer(void) {
     CHECK(!e.frame_missing && e.particles > 0 && e.step_ms >= e.score_ms, "scored step: missing %d particles %zu", e.frame_missing, e.particles);
     CHECK_FAILS(trn_localizer_step(loc, NULL, &e), TRN_ERR_INVALID_ARGUMENT, "observation is NULL");
     trn_localizer_destroy(loc);
+    loc = NULL;
+    /* No compass: a bad mode is named; a uniform yaw prior is wide, a Gaussian one narrow, and the
+     * rotation increment turns the estimate. */
+    CHECK(c.heading == NULL && isnan(o.odometry_yaw_rad), "heading defaults");
+    c.heading = "north";
+    CHECK_FAILS(trn_localizer_create(cpu, map_pixels, MAP_W, MAP_H, MAP_STRIDE, 0.5, &c, &loc), TRN_ERR_INVALID_ARGUMENT, "config->heading");
+    c.heading = "none";
+    o = trn_observation_default();
+    o.odometry_east_m = 0, o.odometry_north_m = 1;
+    CHECK_OK(trn_localizer_create(cpu, map_pixels, MAP_W, MAP_H, MAP_STRIDE, 0.5, &c, &loc));
+    CHECK_OK(trn_localizer_step(loc, &o, &e));
+    CHECK(e.yaw_sd > 2, "uniform yaw prior: spread %g rad", e.yaw_sd);
+    trn_localizer_destroy(loc);
+    loc = NULL;
+    c.start_heading_rad = 1.0, c.start_heading_sd_deg = 3;
+    CHECK_OK(trn_localizer_create(cpu, map_pixels, MAP_W, MAP_H, MAP_STRIDE, 0.5, &c, &loc));
+    o.odometry_yaw_rad = 0.5;
+    CHECK_OK(trn_localizer_step(loc, &o, &e));
+    CHECK(fabs(e.yaw - 1.5) < 0.02 && e.yaw_sd < 0.1, "Gaussian yaw prior turned by 0.5 rad: yaw %g sd %g", e.yaw, e.yaw_sd);
+    trn_localizer_destroy(loc);
     trn_localizer_destroy(NULL);
     trn_backend_destroy(cpu); /* the localizer kept it alive until here */
     {

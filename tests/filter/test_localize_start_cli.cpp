@@ -89,6 +89,44 @@ TEST_F(LocalizeStartCli, EachStartOptionRefusedWithItsName) {
     }
 }
 
+// Compass-less (issue 25): --heading none runs, writes the heading as an output (CSV columns,
+// summary.json figures), and each yaw-prior option is refused with its name when misused.
+TEST_F(LocalizeStartCli, HeadingNoneRunsAndItsYawOptionsAreNamed) {
+    const std::string f = flight("f", "120,100");
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {" --heading north", "--heading: north not in {compass,none}"},
+        {" --start-yaw-deg 30", "--start-yaw-deg: only with --heading none"},
+        {" --start-yaw-sd-deg 5", "--start-yaw-sd-deg: only with --heading none"},
+        {" --heading none --start-yaw-sd-deg 5", "--start-yaw-sd-deg: needs --start-yaw-deg"},
+        {" --heading none --start-yaw-deg 400", "--start-yaw-deg: '400'"},
+        {" --heading none --start-yaw-deg 30 --start-yaw-sd-deg -2", "--start-yaw-sd-deg: '-2'"},
+        {" --heading none --start-heading-deg 30", "--start-heading-deg: not with --heading none"},
+        {" --heading none --heading-sd-deg 3", "--heading-sd-deg: not with --heading none"},
+        {" --heading none --motion-yaw-sd -1", "--motion-yaw-sd: '-1'"},
+    };
+    for (const auto& [extra, expect] : cases) {
+        const auto r = run_trnkit(localize(f) + extra);
+        EXPECT_NE(r.code, 0) << extra << "\n" << r.output;
+        EXPECT_NE(r.output.find(expect), std::string::npos) << extra << "\nexpected: " << expect << "\ngot: " << r.output;
+    }
+    const auto r = run_trnkit(localize(f) + " --heading none --start-yaw-deg 90 --start-yaw-sd-deg 5");
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("heading:      none; final yaw sd"), std::string::npos) << r.output;
+    const nlohmann::json j = summary(f);
+    EXPECT_EQ(j["heading"].get<std::string>().rfind("none", 0), 0u) << j.dump(2);
+    EXPECT_EQ(j["start_heading"], "--heading none: yaw prior 90 +- 5 deg");
+    EXPECT_EQ(j["start_yaw_deg"], 90);
+    for (const char* key : {"mean_yaw_error_deg", "final_yaw_sd_deg", "converged_from_frame", "converged_mean_error_m"})
+        EXPECT_TRUE(j.contains(key)) << key;
+    const std::string csv = read(f + "/out/localization.csv");
+    EXPECT_NE(csv.find(",odometry_source,truth_yaw_deg,estimate_yaw_deg,estimate_yaw_sd_deg,yaw_error_deg\n"), std::string::npos)
+        << csv.substr(0, 400);
+    // With a compass none of it appears: the outputs stay what they were.
+    ASSERT_EQ(run_trnkit(localize(f) + " --force").code, 0);
+    EXPECT_FALSE(summary(f).contains("heading"));
+    EXPECT_EQ(read(f + "/out/localization.csv").find("yaw_sd"), std::string::npos);
+}
+
 TEST_F(LocalizeStartCli, FlightWithoutGroundTruthNeedsStartAndSaysNoGroundTruth) {
     const std::string f = flight("nt", ",");
     const auto refused = run_trnkit(localize(f));

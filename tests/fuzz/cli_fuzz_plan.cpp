@@ -36,6 +36,9 @@ std::map<std::string, CommandPlan> command_plans(const std::string& fx, const st
                       {"--particles", "40"}, {"--template-width", "32"}, {"--no-plots", ""}, {"--out", "localize"}},
                      {"--particles", "--min-particles", "--max-particles", "--rate", "--template-width", "--map", "--mpp", "--sampling", "--backend"},
                      {}, 3};
+    // The fixture folder holds no photos: every run ends in a refusal naming a file or an option.
+    p["import-photos"] = {{{"DIR", fx + "/a_dir"}, {"--out", "air"}, {"--altitude-agl", "60"}, {"--width", "32"}},
+                          {"--width"}, {}, 1};
     p["experiment"] = {{{"name", "metrics"}, {"--quick", ""}, {"--list-jobs", ""}, {"--out", "experiment"}}, {}, {"--list-jobs"}, 1};
     return p;
 }

@@ -69,6 +69,23 @@ def test_the_doc_example_localizes_the_real_flight(flight, capsys):
     assert "16 steps" in capsys.readouterr().out
 
 
+def test_compassless_localizer_row_by_row_equals_localize(flight):
+    """heading="none" (issue 25): fed step_without_compass row by row, the Localizer gives
+    trnkit.localize(heading="none")'s estimates bit for bit; yaw is an output with its spread."""
+    air, ortho = flight
+    whole = trnkit.localize(dataset=air, map=ortho, backend="cpu", rate_hz=0.5, heading="none", max_particles=3000)
+    rows = trnkit.read_air_folder(air)
+    assert rows[0]["step_without_compass"]["heading_rad"] is None and rows[0]["step_without_compass"]["odometry_yaw_rad"] == 0
+    with trnkit.Localizer(trnkit.load_gray(ortho), whole["metres_per_pixel"], "cpu", start=rows[0]["truth"], camera_hfov_deg=60,
+                          init_radius_m=50, max_particles=3000, heading="none") as loc:
+        online = [loc.step(**row["step_without_compass"]) for row in rows]
+    for key in ("x", "y", "yaw", "yaw_sd"):
+        np.testing.assert_array_equal(np.array([e[key] for e in online]), whole["rows"]["estimate_" + key])
+    assert online[0]["yaw_sd"] > 0.3 > online[-1]["yaw_sd"]  # a uniform prior narrows to a heading
+    s = whole["summary"]
+    assert s["final_yaw_sd_deg"] < 10 and s["mean_yaw_error_deg"] < 10 and s["converged_from_frame"] is not None
+
+
 def test_errors_name_the_keyword(tmp_path):
     with pytest.raises(ValueError, match=r"^dataset: .*not a folder"):
         trnkit.localize(dataset=str(tmp_path / "absent"))
@@ -79,6 +96,11 @@ def test_errors_name_the_keyword(tmp_path):
         trnkit.Localizer(ortho, 0.5, "cpu", start=(32, 32), sparse=2)
     with pytest.raises(ValueError, match="conversion"):
         trnkit.Localizer(ortho, 0.5, "cpu", start=(32, 32), conversion="cubic")
+    with pytest.raises(ValueError, match="^heading: "):
+        trnkit.Localizer(ortho, 0.5, "cpu", start=(32, 32), heading="north")
+    with trnkit.Localizer(ortho, 0.5, "cpu", start=(32, 32), heading="none", start_heading_rad=1.0, start_heading_sd_deg=2) as loc:
+        e = loc.step(None, odometry=(0.0, 1.0), odometry_yaw_rad=0.25)  # a Gaussian yaw prior turned by the odometry
+        assert abs(e["yaw"] - 1.25) < 0.02 and e["yaw_sd"] < 0.1
     with trnkit.Localizer(ortho, 0.5, "cpu", start=(32, 32)) as loc:
         with pytest.raises(ValueError, match="altitude_agl_m"):
             loc.step(np.zeros((20, 20), np.uint8))  # a frame needs its scale

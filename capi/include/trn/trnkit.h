@@ -223,6 +223,11 @@ typedef struct trn_localizer_config {
     size_t particles;            /* importance / rejection: fixed count (1000) */
     double init_radius_m;        /* initial particles uniform within this radius of the start (300) */
     double reinit_radius_m;      /* re-initialisation radius after a collapse (300) */
+    /* "compass" (NULL): each step's heading_rad sets the particles' yaw; "none": no compass, yaw is
+     * estimated (start_heading_rad NaN: uniform prior, else Gaussian with start_heading_sd_deg) and
+     * turned by observation.odometry_yaw_rad, the odometry then in the previous frame's axes. */
+    const char* heading;
+    double start_heading_sd_deg; /* spread of the initial headings / yaws, degrees (NaN: 2, the motion model's eps_rot) */
 } trn_localizer_config;
 /* The C++ defaults; start_x, start_y NaN (to be set). */
 TRN_C_API trn_localizer_config trn_localizer_config_default(void);
@@ -237,6 +242,9 @@ typedef struct trn_observation {
     double heading_rad;          /* compass heading; NaN: none this step */
     int has_attitude;            /* nonzero: roll/pitch measured, a tilted frame is warped to nadir */
     double roll_rad, pitch_rad;
+    /* heading "none" only: the frame's rotation since the previous step, clockwise (NaN: unknown);
+     * odometry_north_m is then forward (towards the previous frame's top), odometry_east_m to its right. */
+    double odometry_yaw_rad;
 } trn_observation;
 /* No frame, every number NaN, no attitude. */
 TRN_C_API trn_observation trn_observation_default(void);
@@ -251,6 +259,7 @@ typedef struct trn_estimate {
     const char* lock_state;       /* "none", "ok", "weak", "inconsistent", "fix", "lost" (static) */
     double lock_contrast, lock_drift_m; /* the lock monitor's evidence (NaN: not assessed) */
     double score_ms, step_ms;     /* wall time of the scoring / of the whole step */
+    double yaw_sd;                /* circular sd of the particles' yaws, radians (the heading's spread) */
 } trn_estimate;
 
 /* The map (8-bit grey, row stride in bytes) is uploaded to the backend here and need not outlive the
@@ -282,6 +291,8 @@ typedef struct trn_air_row {
     const char* image_error;      /* "" when the frame loaded, else why not (then observation.frame is NULL) */
     trn_observation observation;  /* its frame valid until the next call */
     double truth_x, truth_y;      /* MapX/MapY, map pixels (NaN: none) */
+    trn_observation observation_without_compass; /* the same for heading "none": no heading, the odometry in the
+                                                    previous frame's axes, odometry_yaw_rad from the heading's change */
 } trn_air_row;
 TRN_C_API trn_status trn_air_reader_open(const char* folder, trn_air_reader** out);
 /* *has_row = 1 and *out filled, or *has_row = 0 at the end. */

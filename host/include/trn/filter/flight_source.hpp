@@ -2,6 +2,7 @@
 // Where the localizer gets its frames: a recorded AIR flight folder or a flight simulated in memory.
 // Both give the same samples (sensors + optional ground truth + the camera image), every
 // `stride`-th frame, so the filter can run at a lower rate than the camera.
+#include <cmath>
 #include <cstddef>
 #include <memory>
 #include <string>
@@ -22,6 +23,11 @@ struct FlightSample {
     double truth_x = 0, truth_y = 0, truth_yaw = 0;     // map pixels, radians
     double odometry_east_m = 0, odometry_north_m = 0;    // visual odometry, from the start (NaN: lost)
     double heading_rad = 0;                              // magnetometer / IMU heading (NaN: none)
+    // The odometry's own yaw of the frame top, in the frame of odometry_east/north_m (clockwise,
+    // radians; NaN: none). Only its changes matter (compass-less localization): an AIR folder's is
+    // its ImuX..W heading, the simulator's the odometry's (truth + its heading error), visual
+    // odometry's the sum of the rotations it measured (visual_odometry.hpp).
+    double odometry_yaw_rad = NAN;
     double map_px_per_camera_px = 1;                     // of `image` as returned (its own width)
     double tilt_deg = 0;                                 // optical axis from the vertical (measured roll/pitch)
     bool too_oblique = false;                            // tilt beyond the limit: not loaded, not scored

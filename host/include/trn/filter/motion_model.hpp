@@ -14,6 +14,15 @@
 // (compass convention: x east, y south). A particle at the true heading with no noise follows
 // the odometry's track exactly, crab or not. `along_heading` restores the literal equations
 // (delta_c = 0: the odometry's direction is dropped), for comparison.
+//
+// Without a compass (StepMotion::yaw_state, FilterConfig::heading = HeadingMode::None) yaw is part
+// of each particle's state. The increment is then expressed in the previous frame's own axes (as if
+// its top pointed north: north = forward, towards the frame top; east = to its right), and the
+// odometry also gives the rotation of the frame since the previous step, dpsi (NaN: unknown):
+//     c      = theta + delta_c + (alpha2 + alpha3 * |dpsi|) * N(0,1)  (theta: the particle's yaw before the step)
+//     x', y' as above
+//     theta' = theta + dpsi + (yaw_sd_deg + yaw_turn_sd * |dpsi|) * N(0,1)
+// and theta' = theta + yaw_unknown_sd_deg * N(0,1) when dpsi is unknown (odometry lost).
 #include <array>
 #include <cmath>
 #include "trn/export.hpp"
@@ -28,6 +37,10 @@ struct MotionModel {
     double alpha3 = 0.2;       // extra course sd per radian the heading turned this step (odometry in turns)
     double eps_tran_m = 1.0;   // isotropic position sd per step, metres
     double eps_rot_deg = 2.0;  // heading sd around the measured heading, degrees
+    // Without a compass (yaw in the particle state):
+    double yaw_sd_deg = 1.0;          // yaw sd added per step to the odometry's rotation increment, degrees
+    double yaw_turn_sd = 0.05;        // extra yaw sd per radian the odometry turned (its rotation's scale error)
+    double yaw_unknown_sd_deg = 10.0; // yaw sd per step when the rotation is unknown (odometry lost)
 
     void validate() const;  // throws trn::Error naming the field and its range
 };
@@ -41,6 +54,10 @@ struct StepMotion {
     bool have_heading = false;     // false: each particle keeps its own heading
     double turn_rad = 0;           // |heading change| since the previous step
     double noise_gain = 1;         // > 1 while the odometry is lost (constant velocity)
+    // Without a compass: each particle turns by rotation_rad (NaN: unknown) and moves by the
+    // increment as seen from its own yaw before the turn (the increment is in the previous frame's axes).
+    bool yaw_state = false;
+    double rotation_rad = NAN;
 };
 
 // `frame_heading_rad`: the heading the increment is expressed against (this step's, or the last
@@ -50,6 +67,10 @@ StepMotion make_step_motion(double east_m, double north_m, double heading_rad, d
 
 // Moves one particle (x, y map pixels, yaw radians). `z`: five independent standard normal draws
 // (heading, along track, course, x, y); all zero = the noise-free motion.
+// The step of a filter without a compass: (right_m, forward_m) in the previous frame's axes, the
+// frame's rotation since then (NaN: unknown).
+StepMotion make_yaw_state_motion(double right_m, double forward_m, double rotation_rad, double metres_per_pixel);
+
 void propagate_particle(const MotionModel& model, const StepMotion& m, double metres_per_pixel, const std::array<double, 5>& z,
                         double& x, double& y, double& yaw);
 

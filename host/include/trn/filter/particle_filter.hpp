@@ -29,6 +29,17 @@
 //   - collapse (every weight 0 or non-finite): re-initialisation policy — the particle set is redrawn
 //     uniformly within `reinit_radius_m` of the last estimate (propagated by this step's motion),
 //     headings from the magnetometer, and the step is scored again.
+//
+// Without a compass (FilterConfig::heading = HeadingMode::None: `localize --heading none`) yaw is
+// part of each particle's state: initialised uniform (no start heading) or Gaussian around the
+// given one (init_heading_sd_deg), turned each step by the odometry's rotation increment plus
+// noise (FilterInput::odometry_yaw_rad; motion_model.hpp), the odometry's translation applied
+// in each particle's own frame (FilterInput's increment is then in the previous frame's axes); the
+// KLD bins are (x, y, yaw) cells of kld_bin_m x kld_bin_m x kld_yaw_bin_deg; the lock monitor's
+// dead reckoning turns the increment by the estimate's yaw; a collapse or a lost lock re-scatters
+// positions as with a compass and yaws around the estimate's with its spread (at least one yaw
+// bin; uniform while the spread is above 90 degrees). The estimate's yaw is the circular weighted mean and yaw_sd its
+// circular standard deviation (both modes).
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -47,6 +58,12 @@ TRN_API_BEGIN
 namespace trn::filter {
 
 enum class SamplingMethod { Kld, Importance, Rejection };
+enum class HeadingMode {
+    Compass,  // each step's heading (magnetometer) sets every particle's yaw (the dissertation's filter)
+    None,     // no compass: yaw is estimated, propagated by the odometry's rotation increment
+};
+HeadingMode parse_heading_mode(std::string_view text);  // "compass", "none"
+const char* to_string(HeadingMode mode);
 SamplingMethod parse_sampling_method(std::string_view text);  // "kld", "importance", "rejection"
 const char* to_string(SamplingMethod method);
 
@@ -58,6 +75,8 @@ struct FilterConfig {
     double kld_epsilon = 0.05;
     double kld_upper_quantile = 0.9;
     double kld_bin_m = 5.0;
+    double kld_yaw_bin_deg = 10.0;  // HeadingMode::None: yaw width of a KLD bin (36 bins around)
+    HeadingMode heading = HeadingMode::Compass;
     std::size_t min_particles = 100;
     std::size_t max_particles = 2000;  // also the size of the initial set
     std::size_t fixed_particles = 1000;  // importance / rejection sampling
@@ -83,7 +102,11 @@ struct Particle {
 // What the filter gets per camera frame.
 struct FilterInput {
     double odometry_east_m = 0, odometry_north_m = 0;  // odometry displacement since the last step (NaN: lost)
-    double heading_rad = 0;                            // magnetometer heading (NaN: keep each particle's)
+    double heading_rad = 0;                            // magnetometer heading (NaN: keep each particle's); HeadingMode::None ignores it
+    // HeadingMode::None: the frame's rotation since the previous step (clockwise, radians; NaN:
+    // unknown), and odometry_east_m / north_m are in the previous frame's axes: east = to the
+    // right of its top, north = towards its top. Compass mode ignores it.
+    double odometry_yaw_rad = NAN;
     GrayView frame;                                    // empty: no image this step
     double map_px_per_camera_px = 1;                   // from altitude, field of view and map resolution
 };
@@ -93,6 +116,7 @@ struct Estimate {
     double best_x = 0, best_y = 0, best_yaw = 0;
     double best_ncc = 0;
     double spread_px = 0;  // weighted rms distance of the particles from (x, y)
+    double yaw_sd = 0;     // circular standard deviation of the weighted yaws, radians: sqrt(-2 ln R)
 };
 
 struct StepReport {
@@ -132,6 +156,7 @@ private:
     std::size_t draw_index(double total_weight);
     void scatter(double x, double y, double heading, bool have_heading, double radius_m, std::size_t count,
                  std::size_t first = 0, double heading_sd_deg = NAN);
+    void scatter_yaw_state(double x, double y, double yaw, double yaw_sd, double radius_m, std::size_t count, std::size_t first);
     std::size_t measure(const FilterInput& input, double& score_ms);  // returns invalid count
     void update_estimate();
     void check_lock(const StepMotion& m, StepReport& report);
@@ -148,6 +173,7 @@ private:
     FilterCounters counters_;
     LockMonitor lock_;
     double last_east_ = 0, last_north_ = 0, last_heading_ = NAN;
+    bool yaw_state_ = false;  // config_.heading == HeadingMode::None
     bool initialised_ = false;
     std::uint64_t rng_;
 };

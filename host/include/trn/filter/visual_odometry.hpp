@@ -89,9 +89,16 @@ GroundStep ground_displacement(double dx_px, double dy_px, double metres_per_px,
 // counts it as odometry lost); the track then restarts from the current frame, the missed motion
 // is not guessed. FlightSample::odometry_source says per sample: "visual:features",
 // "visual:phase", "visual:lost" or "visual:no-frame" ("visual:start" for the first frame).
+// FlightSample::odometry_yaw_rad is the heading the track was turned by (NaN while lost).
+// With `own_yaw` (compass-less localization) the measured headings are not used: the track is
+// turned by the odometry's own yaw instead, 0 at the first frame plus every rotation the features
+// measured (FrameMotion::rotation_rad; a phase-correlation step counts as no rotation), which is
+// then the sample's odometry_yaw_rad. Its increments are the frames' own motion exactly: the
+// shift in the previous frame's axes and the rotation between the two frames.
 class VisualOdometrySource : public FlightSource {
 public:
-    VisualOdometrySource(FlightSource& inner, double map_metres_per_pixel, const VisualOdometryOptions& options = {});
+    VisualOdometrySource(FlightSource& inner, double map_metres_per_pixel, const VisualOdometryOptions& options = {},
+                         bool own_yaw = false);
     bool next(FlightSample& sample) override;
     std::size_t frames_hint() const override { return inner_.frames_hint(); }
 
@@ -107,8 +114,8 @@ private:
     VisualOdometry vo_;
     FrameMotion last_;
     Counts counts_;
-    bool have_reference_ = false;
-    double ref_metres_per_px_ = NAN, ref_heading_ = NAN;
+    bool have_reference_ = false, own_yaw_ = false;
+    double ref_metres_per_px_ = NAN, ref_heading_ = NAN, yaw_ = 0;
     double east_m_ = 0, north_m_ = 0;
 };
 

@@ -34,6 +34,25 @@ private:
     double e0_ = 0, n0_ = 0, prev_e_ = 0, prev_n_ = 0;
 };
 
+// Without a compass the Localizer takes each odometry step in the previous frame's axes and the
+// frame's rotation since then (Observation::odometry_yaw_rad). A recorded odometry is a track in
+// its own frame with its own yaw of the frame top (an AIR folder's ImuX..W heading, the
+// simulator's odometry yaw, visual odometry's summed rotations): this turns each step (an
+// OdometryIncrements step) by the yaw at the previous reading, and the rotation is the change of
+// yaw. Only the yaw's changes enter, never its offset from north. A lost step (NaN) or one without
+// a yaw gives NaN rotation; the first reading is the start (rotation 0).
+class CompasslessOdometry {
+public:
+    struct Step {
+        double right_m = NAN, forward_m = NAN, rotation_rad = NAN;
+    };
+    Step next(const OdometryIncrements::Step& step, double odometry_yaw_rad);
+
+private:
+    bool started_ = false;
+    double yaw_ = NAN;  // at the last finite reading
+};
+
 struct AirFrame {
     std::size_t row = 0;                       // 0-based row of metadata.csv
     std::string filename;
@@ -44,10 +63,14 @@ struct AirFrame {
     double roll_rad = 0, pitch_rad = 0;        // from ImuX..W
     double odometry_east_m = NAN, odometry_north_m = NAN;  // SvoX/SvoY as read, from the start
     OdometryIncrements::Step odometry_step;    // since the previous row
+    CompasslessOdometry::Step compassless_step;  // the same in the previous frame's axes, and the heading's change
     double truth_x = NAN, truth_y = NAN;       // MapX/MapY (NaN: none)
 
     // The Localizer's input for this row (the frame view refers to `image`).
     Observation observation() const;
+    // The same for a Localizer without a compass (filter.heading = HeadingMode::None): no heading,
+    // the odometry in the previous frame's axes and the rotation from the ImuX..W heading's change.
+    Observation observation_without_compass() const;
 };
 
 class AirFrameReader {
@@ -60,6 +83,7 @@ public:
 private:
     sim::AirReader reader_;
     OdometryIncrements odometry_;
+    CompasslessOdometry compassless_;
     std::size_t row_ = 0;
 };
 

@@ -35,6 +35,7 @@ struct AirInputs {
     double fps = 0;            // 0: unknown (every row is a filter step)
     std::string map_path;
     sim::Map map;
+    std::string latlon_source; // flight.json's (sim::FlightInfo::latlon_source): "camera_gps" for photos
     std::string georeference;  // how lat/lon are computed ("" when the map has none)
     std::function<sim::LatLon(double x, double y)> to_latlon;                   // empty without georeference
     std::function<std::array<double, 2>(double lat, double lon)> to_map_pixel;  // empty without georeference

@@ -26,6 +26,8 @@ struct LocalizationRow {
     double truth_x = NAN, truth_y = NAN;               // map pixels
     double odometry_x = NAN, odometry_y = NAN;         // odometry placed on the map at the start
     double estimate_x = 0, estimate_y = 0, estimate_yaw = 0;
+    double estimate_yaw_sd = 0;                        // circular sd of the particles' yaws, radians
+    double truth_yaw = NAN;                            // radians, with the ground truth
     double best_x = 0, best_y = 0;
     double error_m = NAN, odometry_error_m = NAN;
     std::size_t particles = 0, off_map = 0;
@@ -49,6 +51,14 @@ struct LocalizationSummary {
     double frames_per_second = 0;   // filter steps per second of wall time (sampling + scoring + estimate)
     double mean_score_ms = 0;
     std::size_t frames_too_oblique = 0;  // not scored for tilt; counters.frames_missing excludes them
+    // The heading estimate (reported for compass-less runs): error of the estimate's yaw against the
+    // true yaw (mean |error| over the steps with truth, final), final circular sd of the yaws, and
+    // the error after convergence: from the first step whose yaw sd is below kConvergedYawSdDeg and
+    // whose lock-monitor verdict is a fix (position confident; yaw alone when no step was assessed) on.
+    double mean_yaw_error_deg = NAN, final_yaw_error_deg = NAN, final_yaw_sd_deg = NAN;
+    double converged_from_frame = NAN;        // frame of that first step (NaN: never converged)
+    double converged_mean_error_m = NAN;      // mean position error from that step on
+    double converged_mean_yaw_error_deg = NAN;
     filter::FilterCounters counters;
 };
 
@@ -64,6 +74,7 @@ struct RunInfo {
     double start_x = NAN, start_y = NAN;   // the start used (the first row's truth when the spec gave none)
     bool visual_odometry = false;
     filter::VisualOdometrySource::Counts visual_odometry_counts;
+    std::string heading = "compass";       // "none": compass-less (yaw estimated; the report adds its columns and numbers)
 };
 
 struct LocalizationResult {
@@ -133,6 +144,8 @@ inline double fitted_slope(const std::vector<double>& x, const std::vector<doubl
 std::map<std::string, double> with_lock_numbers(const LocalizationSummary& summary, std::map<std::string, double> numbers);
 std::string format_lock_summary(const LocalizationSummary& summary);
 LocalizationSummary summarise(const std::vector<LocalizationRow>& rows, const filter::FilterCounters& counters, double wall_s);
+// Yaw sd (degrees) below which a compass-less run counts as converged (summary's converged_*).
+inline constexpr double kConvergedYawSdDeg = 10.0;
 
 }  // namespace trn::localize
 TRN_API_END

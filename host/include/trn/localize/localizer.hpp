@@ -24,7 +24,10 @@ struct LocalizerConfig {
     filter::FilterConfig filter;             // metres_per_pixel is replaced by the map's
     filter::BackendScorerOptions scoring;    // template width, dense or sparse scoring
     double start_x = NAN, start_y = NAN;     // map pixels: the last known position (required before the first step)
-    double start_heading_rad = NAN;          // centre of the initial headings; NaN: the first step's heading
+    // Centre of the initial headings; NaN: the first step's heading. Without a compass
+    // (filter.heading = HeadingMode::None) the yaw prior: NaN uniform, else Gaussian around it with
+    // filter.init_heading_sd_deg.
+    double start_heading_rad = NAN;
     double camera_hfov_deg = NAN;            // horizontal field of view, needed when steps give altitude, not scale
     double max_tilt_deg = filter::kDefaultMaxTiltDeg;  // steps with an attitude tilted further are not scored
 
@@ -38,6 +41,11 @@ struct Observation {
     double altitude_agl_m = NAN;                          // height above the ground, metres
     double odometry_east_m = NAN, odometry_north_m = NAN; // displacement since the previous step (NaN: lost)
     double heading_rad = NAN;                             // compass heading; NaN: none this step
+    // Without a compass (config.filter.heading = HeadingMode::None) heading_rad is ignored, the
+    // odometry's displacement is in the previous frame's own axes (as if its top pointed north:
+    // odometry_north_m forward, towards the frame top; odometry_east_m to its right), and this is
+    // the frame's rotation since the previous step, clockwise (NaN: unknown this step).
+    double odometry_yaw_rad = NAN;
     bool has_attitude = false;                            // roll/pitch measured: a tilted frame is warped to nadir
     double roll_rad = 0, pitch_rad = 0;
 };
@@ -46,6 +54,7 @@ struct Estimate {
     double x = 0, y = 0, yaw = 0;                   // weighted mean, map pixels / radians
     double best_x = 0, best_y = 0, best_yaw = 0, best_ncc = 0;  // the best-scoring particle
     double spread_m = 0;                            // weighted rms distance of the particles from (x, y)
+    double yaw_sd = 0;                              // circular sd of the particles' yaws, radians (the heading's spread)
     std::size_t particles = 0, off_map = 0;         // scored this step / of them with no valid score
     bool frame_missing = false;                     // no frame scored (none given, or too oblique)
     bool too_oblique = false;                       // the attitude tilted the camera beyond max_tilt_deg

@@ -17,7 +17,12 @@ namespace trn::localize {
 // off or no frame; else the strongest of lost > fix > inconsistent > weak > ok), lock_contrast,
 // lock_drift_m and lock_drift_bound_m (empty when unknown), lock_lost_events (running count) and
 // lock_widen_radius_m (the widened search's radius on a lost step, else 0).
-void write_rows_csv(const std::string& path, const std::vector<LocalizationRow>& rows);
+// `heading_columns` (compass-less runs) appends truth_yaw_deg, estimate_yaw_deg, estimate_yaw_sd_deg
+// (the heading estimate and its circular sd) and yaw_error_deg (estimate minus truth, wrapped).
+void write_rows_csv(const std::string& path, const std::vector<LocalizationRow>& rows, bool heading_columns = false);
+
+// The heading figures of a compass-less run under their summary.json names (NaN: unknown).
+std::vector<std::pair<std::string, double>> heading_numbers(const LocalizationSummary& summary);
 
 // The six error figures (mean, final, slope of the filter and of the odometry) under the names every
 // report uses: summary.json and the studies' results.

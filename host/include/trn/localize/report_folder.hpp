@@ -23,6 +23,7 @@ struct ReportOptions {
     std::map<std::string, std::string> strings;  // the caller's own summary.json fields
     std::map<std::string, double> numbers;       // NaN: not given, left out of summary.json
     std::string after_summary;                   // printed after the summary (e.g. the final lat/lon)
+    std::map<std::string, std::string> files;    // the caller's own files: plain name in the folder -> contents
 };
 
 // Writes localization.csv, summary.json and (with plots) the plots of `result` over `map` into

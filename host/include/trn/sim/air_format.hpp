@@ -9,6 +9,13 @@
 //   OrientationX, Y, Z, W         true attitude quaternion (ENU, FLU body)
 //   MapX, MapY                    true position in map pixels (x east, y south)
 //   SvoX, SvoY, SvoZ              visual odometry position, metres, same frame as Pose
+// Groups of columns a flight may not have are left empty in every cell of the group (NaN in
+// AirRecord; the writer writes NaN as an empty cell): Latitude,Longitude (no position fix);
+// ImuX..W (no attitude measured: heading unknown, the camera taken as level at nadir);
+// PoseX..Z, OrientationX..W and MapX,MapY (no ground truth); SvoX..Z (no recorded odometry: only
+// visual odometry can be used). A group partly empty is a broken row. Camera photos
+// (`trnkit import-photos`) have no attitude, truth or odometry, and their Latitude/Longitude are the
+// camera's GPS (flight.json's latlon_source).
 // The reader takes columns in any order, ignores extra ones, streams rows (a real flight has
 // 16,000) and reports a malformed row by file and line number: besides unparsable fields, values
 // no flight can have (latitude beyond 90, |MapX| > 1e7, a quaternion not of length 1) and rows
@@ -69,7 +76,7 @@ const std::vector<std::string>& air_columns();
 struct FlightInfo {
     std::string scenario;
     std::string map_file;          // localization map, relative to the flight folder ("" if none)
-    double metres_per_pixel = 1;
+    double metres_per_pixel = 1;   // of that map; 0 (left out of flight.json): not stated (no map, or a GeoTIFF's own)
     std::optional<GeoOrigin> origin;
     Camera camera;
     double fps = 50;
@@ -77,22 +84,31 @@ struct FlightInfo {
     int rendered_year = 0;         // year of the map the frames were rendered from
     std::uint64_t seed = 0;
     std::size_t frames = 0;        // rows metadata.csv must have (0: not declared); a shorter file is cut
+    // What metadata.csv's Latitude/Longitude are: "" (not stated; simulate's are the truth),
+    // "truth", or kLatLonCameraGps: a camera's GPS fixes, a reference track that lags and drifts
+    // (seconds, metres), never ground truth.
+    std::string latlon_source;
 };
+inline constexpr const char* kLatLonCameraGps = "camera_gps";
 void write_flight_info(const std::string& path, const FlightInfo& info);
 FlightInfo read_flight_info(const std::string& path);
 
 class AirWriter {
 public:
     // Creates the folder (and parents). metadata.csv appears only at close(), complete: a run
-    // that stops early leaves no metadata.csv rather than a cut one.
-    explicit AirWriter(const std::string& folder);
-    // Writes the image (when not empty) under record.filename and keeps the row for close().
-    void write(const AirRecord& record, GrayView image = {});
+    // that stops early leaves no metadata.csv rather than a cut one. Extra columns (after the AIR
+    // ones; readers ignore them) carry what the format has no column for.
+    explicit AirWriter(const std::string& folder, std::vector<std::string> extra_columns = {});
+    // Writes the image (when not empty) under record.filename and keeps the row for close(). NaN
+    // fields are empty cells: a whole group of optional columns or none (see above); `extra`
+    // has one value per extra column.
+    void write(const AirRecord& record, GrayView image = {}, const std::vector<std::string>& extra = {});
     void close();  // writes metadata.csv whole; throws naming the file when the write failed
     const std::string& folder() const { return folder_; }
 
 private:
     std::string folder_;
+    std::vector<std::string> extra_columns_;
     std::string csv_;  // metadata.csv so far
     bool closed_ = false;
 };

@@ -32,6 +32,7 @@ struct FlightFrame {
     Vec3 position_m;               // true east / north / up from the start point
     LatLon geo;                    // true latitude / longitude
     Vec3 odometry_m;               // visual odometry estimate, same frame as position_m
+    double odometry_yaw_rad = 0;   // the odometry's own yaw of the frame top in that frame: truth + its heading error
     double magnetometer_heading_rad = 0;  // measured heading of the camera (frame top)
     double baro_altitude_m = 0;    // measured altitude above ground (barometer)
     double template_scale = 1;     // map pixels per camera pixel at the TRUE altitude (truth_pose)

@@ -1,0 +1,29 @@
+#pragma once
+// --heading compass|none and the compass-less yaw prior (--start-yaw-deg, --start-yaw-sd-deg) of
+// `localize` and `demo`: registered with their ranges, cross-checked (errors name the option) and
+// copied into a LocalizerConfig.
+#include <cmath>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "trn/localize/localizer.hpp"
+
+namespace trn::cli {
+
+struct HeadingArgs {
+    std::string heading = "compass";
+    double start_yaw_deg = NAN, start_yaw_sd_deg = NAN;  // NaN: uniform / kDefaultStartYawSdDeg
+};
+
+// Spread of the yaw prior when --start-yaw-deg comes without --start-yaw-sd-deg.
+inline constexpr double kDefaultStartYawSdDeg = 10.0;
+
+void add_heading_options(CLI::App& cmd, HeadingArgs& args);
+// Throws trn::Error naming the option: the yaw prior without --heading none, or a compass-mode
+// prior option (`compass_options`: e.g. "--start-heading-deg" when given) with it.
+void apply_heading_options(const HeadingArgs& args, localize::LocalizerConfig& config, const std::string& compass_option_given = "");
+// "uniform" or "Y +- S deg" (for the printout and summary.json).
+std::string describe_yaw_prior(const HeadingArgs& args);
+
+}  // namespace trn::cli
