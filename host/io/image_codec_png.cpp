@@ -37,30 +37,49 @@ struct FileCloser {
                        "reader, built without OpenCV imgcodecs): convert the image to PNG");
 }
 
+// A PNG file opened for reading: its signature checked, libpng's read and info structs made and
+// pointed at it (released with the object). Callers set their own setjmp(errors.jump) before the
+// first libpng call that can fail: the jump must land in a frame that is still live.
+class PngReader {
+public:
+    explicit PngReader(const std::string& path) : file_(std::fopen(path.c_str(), "rb")) {
+        if (!file_) throw Error(path + ": cannot open (" + std::strerror(errno) + ")");
+        png_byte signature[8] = {};
+        if (std::fread(signature, 1, 8, file_.get()) != 8 || png_sig_cmp(signature, 0, 8) != 0) not_png(path);
+        png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &errors, on_error, on_warning);
+        info = png ? png_create_info_struct(png) : nullptr;
+        if (!info) {
+            png_destroy_read_struct(&png, nullptr, nullptr);
+            throw Error(path + ": out of memory starting the PNG decoder");
+        }
+    }
+    ~PngReader() { png_destroy_read_struct(&png, &info, nullptr); }
+    PngReader(const PngReader&) = delete;
+    PngReader& operator=(const PngReader&) = delete;
+    // After the caller's setjmp: hands the file to libpng and reads the header.
+    void start() {
+        png_init_io(png, file_.get());
+        png_set_sig_bytes(png, 8);
+        png_read_info(png, info);
+    }
+    PngErrors errors;
+    png_structp png = nullptr;
+    png_infop info = nullptr;
+
+private:
+    std::unique_ptr<std::FILE, FileCloser> file_;
+};
+
 }  // namespace
 
 GrayImage decode_gray(const std::string& path) {
-    std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "rb"));
-    if (!file) throw Error(path + ": cannot open (" + std::strerror(errno) + ")");
-    png_byte signature[8] = {};
-    if (std::fread(signature, 1, 8, file.get()) != 8 || png_sig_cmp(signature, 0, 8) != 0) not_png(path);
-
-    PngErrors errors;
-    png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &errors, on_error, on_warning);
-    png_infop info = png ? png_create_info_struct(png) : nullptr;
-    if (!info) {
-        png_destroy_read_struct(&png, nullptr, nullptr);
-        throw Error(path + ": out of memory starting the PNG decoder");
-    }
+    PngReader reader(path);
+    png_structp png = reader.png;
+    png_infop info = reader.info;
     GrayImage img;
     std::vector<png_bytep> rows;
-    if (setjmp(errors.jump)) {
-        png_destroy_read_struct(&png, &info, nullptr);
-        throw Error(path + ": cannot decode PNG (" + errors.message + ")");
-    }
-    png_init_io(png, file.get());
-    png_set_sig_bytes(png, 8);
-    png_read_info(png, info);
+    if (setjmp(reader.errors.jump)) throw Error(path + ": cannot decode PNG (" + reader.errors.message + ")");
+    reader.start();
     const int color_type = png_get_color_type(png, info), bit_depth = png_get_bit_depth(png, info);
     if (bit_depth > 8) png_set_strip_16(png);
     png_set_strip_alpha(png);
@@ -78,38 +97,21 @@ GrayImage decode_gray(const std::string& path) {
     for (int y = 0; y < img.height; ++y) rows[y] = img.pixels.data() + std::size_t(y) * img.width;
     png_read_image(png, rows.data());
     png_read_end(png, nullptr);
-    png_destroy_read_struct(&png, &info, nullptr);
     return img;
 }
 
 GrayImage decode_validity(const std::string& path, std::optional<int> nodata) {
-    std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "rb"));
-    if (!file) throw Error(path + ": cannot open (" + std::strerror(errno) + ")");
-    png_byte signature[8] = {};
-    if (std::fread(signature, 1, 8, file.get()) != 8 || png_sig_cmp(signature, 0, 8) != 0) not_png(path);
-    PngErrors errors;
-    png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &errors, on_error, on_warning);
-    png_infop info = png ? png_create_info_struct(png) : nullptr;
-    if (!info) {
-        png_destroy_read_struct(&png, nullptr, nullptr);
-        throw Error(path + ": out of memory starting the PNG decoder");
-    }
+    PngReader reader(path);
+    png_structp png = reader.png;
+    png_infop info = reader.info;
     GrayImage valid;
     std::vector<png_byte> rgba;
     std::vector<png_bytep> rows;
-    if (setjmp(errors.jump)) {
-        png_destroy_read_struct(&png, &info, nullptr);
-        throw Error(path + ": cannot decode PNG (" + errors.message + ")");
-    }
-    png_init_io(png, file.get());
-    png_set_sig_bytes(png, 8);
-    png_read_info(png, info);
+    if (setjmp(reader.errors.jump)) throw Error(path + ": cannot decode PNG (" + reader.errors.message + ")");
+    reader.start();
     const int color_type = png_get_color_type(png, info);
     const bool alpha = (color_type & PNG_COLOR_MASK_ALPHA) != 0 || png_get_valid(png, info, PNG_INFO_tRNS);
-    if (!alpha && !nodata) {
-        png_destroy_read_struct(&png, &info, nullptr);
-        return {};
-    }
+    if (!alpha && !nodata) return {};
     // Every layout as 8-bit RGBA (opaque where the file has no alpha).
     png_set_expand(png);
     png_set_strip_16(png);
@@ -125,7 +127,6 @@ GrayImage decode_validity(const std::string& path, std::optional<int> nodata) {
     for (int y = 0; y < valid.height; ++y) rows[y] = rgba.data() + 4 * std::size_t(y) * valid.width;
     png_read_image(png, rows.data());
     png_read_end(png, nullptr);
-    png_destroy_read_struct(&png, &info, nullptr);
     valid.pixels.assign(std::size_t(valid.width) * valid.height, 255);
     for (std::size_t i = 0; i < valid.pixels.size(); ++i) {
         const png_byte* p = rgba.data() + 4 * i;

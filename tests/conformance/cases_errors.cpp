@@ -6,19 +6,10 @@
 
 #include "../common/test_images.hpp"
 #include "cases.hpp"
+#include "checks.hpp"
 
 namespace trn::conformance {
 namespace {
-
-template <typename F>
-void expect_error(F&& f, const std::string& fragment) {
-    try {
-        f();
-        ADD_FAILURE() << "expected trn::Error containing '" << fragment << "'";
-    } catch (const Error& e) {
-        EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << "message was: " << e.what();
-    }
-}
 
 void bad_input(Backend& dut, Backend& ref) {
     const auto map = test::textured_image(50, 40, 1), templ = test::textured_image(20, 10, 2), big = test::textured_image(60, 10, 3);

@@ -191,16 +191,6 @@ void masked_real_orthomosaic(Backend& dut, Backend& ref) {
     EXPECT_TRUE(std::any_of(got.begin(), got.end(), [](const ParticleScore& s) { return s.flags & kTooFewSamples; }));
 }
 
-template <typename F>
-void expect_error(F&& f, const std::string& fragment) {
-    try {
-        f();
-        ADD_FAILURE() << "expected trn::Error containing '" << fragment << "'";
-    } catch (const Error& e) {
-        EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << "message was: " << e.what();
-    }
-}
-
 void mask_errors(Backend& dut, Backend&) {
     const PaddedGray map = textured_image(50, 40, 1);
     std::vector<std::uint8_t> small(49 * 40, 255), none(50 * 40, 0), one_cell(50 * 40, 0);

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <iomanip>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "trn/backend.hpp"
@@ -37,6 +38,17 @@ private:
     std::vector<ParticleScore> buf_;
     std::size_t n_;
 };
+
+// A call that must throw trn::Error with `fragment` in its message (the same on every backend).
+template <typename F>
+void expect_error(F&& f, const std::string& fragment) {
+    try {
+        f();
+        ADD_FAILURE() << "expected trn::Error containing '" << fragment << "'";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << "message was: " << e.what();
+    }
+}
 
 // The same bits: every backend evaluates the exact integer definition of scoring.hpp.
 inline bool same_bits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
