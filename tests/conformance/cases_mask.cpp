@@ -11,12 +11,11 @@
 #include <numbers>
 #include <random>
 
-#include <opencv2/imgcodecs.hpp>
-
 #include "../common/test_images.hpp"
 #include "cases.hpp"
 #include "checks.hpp"
 #include "trn/fixed_point.hpp"
+#include "trn/io/image_io.hpp"
 
 namespace trn::conformance {
 namespace {
@@ -175,18 +174,14 @@ void masked_real_orthomosaic(Backend& dut, Backend& ref) {
     const std::string map_path = base + "/realflight2/orthomosaic.png", frame_path = base + "/realflight2/frames/frame_00000.png";
     if (!dir || !std::filesystem::exists(map_path) || !std::filesystem::exists(frame_path))
         GTEST_SKIP() << "shared data not found (TRN_SHARED_DATA='" << base << "'): real orthomosaic case not run";
-    const cv::Mat rgba = cv::imread(map_path, cv::IMREAD_UNCHANGED), frame = cv::imread(frame_path, cv::IMREAD_GRAYSCALE);
-    ASSERT_EQ(rgba.channels(), 4);
-    cv::Mat grey, alpha;
-    cv::cvtColor(rgba, grey, cv::COLOR_BGRA2GRAY);
-    cv::extractChannel(rgba, alpha, 3);
+    // Read as every trnkit command reads maps (the device kit's build: libpng, no imgcodecs).
+    const GrayImage grey = load_gray(map_path), alpha = load_validity(map_path), frame = load_gray(frame_path);
+    ASSERT_EQ(alpha.width, grey.width) << "the orthomosaic has no alpha";
     std::mt19937 rng(19);
-    const auto poses = poses_over(rng, 150, grey.cols, grey.rows, 0.6f, 0.75f);
+    const auto poses = poses_over(rng, 150, grey.width, grey.height, 0.6f, 0.75f);
     ScoreOptions o;
     o.sampling = Sampling::random(0.2, 5);
-    const auto got = score_and_compare(dut, ref, GrayView{grey.data, grey.cols, grey.rows, grey.cols},
-                                       GrayView{alpha.data, alpha.cols, alpha.rows, alpha.cols},
-                                       GrayView{frame.data, frame.cols, frame.rows, frame.cols}, poses, o);
+    const auto got = score_and_compare(dut, ref, grey.view(), alpha.view(), frame.view(), poses, o);
     EXPECT_TRUE(std::any_of(got.begin(), got.end(), [](const ParticleScore& s) { return s.valid(); }));
     EXPECT_TRUE(std::any_of(got.begin(), got.end(), [](const ParticleScore& s) { return s.flags & kTooFewSamples; }));
 }

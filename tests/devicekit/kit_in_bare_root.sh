@@ -6,10 +6,17 @@
 # the reason, writes at most 8 files, and finishes inside its budget.
 # Exit 77 (ctest: skipped, with the reason) when the bare root cannot be made here.
 #
-# usage: kit_in_bare_root.sh REPO BUILD_DIR CACHE_DIR BUDGET_S
+# Exit 77 too for a build without the benchmarks (BENCH_BUILT 0: TRN_BUILD_BENCH=OFF, as the
+# asan-ubsan preset has it), which the kit packs.
+#
+# usage: kit_in_bare_root.sh REPO BUILD_DIR CACHE_DIR BUDGET_S [BENCH_BUILT]
 set -uo pipefail
-repo=$1 build=$2 cache=$3 budget=$4
+repo=$1 build=$2 cache=$3 budget=$4 bench_built=${5:-1}
 fail() { echo "FAILED: $*"; exit 1; }
+if [[ "$bench_built" == 0 ]]; then
+  echo "SKIPPED: this build has no benchmarks (TRN_BUILD_BENCH=OFF, e.g. the asan-ubsan preset); the device kit packs trn_bench"
+  exit 77
+fi
 
 kit="$build/device-kit"
 "$repo/scripts/device-kit" --build "$build" --out "$kit" --no-build || fail "scripts/device-kit did not make the kit"
