@@ -92,7 +92,7 @@ void add_register_command(CLI::App& app) {
         const std::vector<reg::PoseRow> rows = a->verify.empty() ? std::vector<reg::PoseRow>{} : reg::read_pose_rows(a->verify);
         const GrayImage map = load_gray(a->map);
         const GrayImage valid = load_validity(a->map, a->nodata >= 0 ? std::optional<int>(a->nodata) : std::nullopt);
-        const GrayView valid_view = valid.width > 0 ? valid.view() : GrayView{};
+        const GrayView valid_view = validity_view(valid);
         std::vector<GrayImage> frames;
         std::vector<std::string> names;
         for (const std::string& f : a->frames) {

@@ -69,7 +69,7 @@ void add_score_command(CLI::App& app) {
         std::vector<ParticleScore> scores(poses.size());
         PhaseTimes t;
         try {
-            const MapHandle handle = backend->upload_map(map.view(), valid.width > 0 ? valid.view() : GrayView{});
+            const MapHandle handle = backend->upload_map(map.view(), validity_view(valid));
             backend->score(handle, templ.view(), poses, options, scores, &t);
         } catch (const BackendUnavailable&) {
             throw;

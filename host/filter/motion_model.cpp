@@ -47,27 +47,31 @@ StepMotion make_yaw_state_motion(double right_m, double forward_m, double rotati
     return m;
 }
 
+namespace {
+// The translation of one step from a particle's course heading (shared by both modes): the
+// odometry's distance and course with along/across-track noise.
+void translate(const MotionModel& model, const StepMotion& m, double mpp, const std::array<double, 5>& z, double heading, double& x,
+               double& y) {
+    const double d = m.distance_px * (1 + model.alpha1 * m.noise_gain * z[1]);
+    const double offset = model.along_heading ? 0.0 : m.course_offset_rad;
+    const double course = heading + offset + ((model.alpha2 * m.noise_gain) + model.alpha3 * m.turn_rad) * z[2];
+    const double pos_sd = model.eps_tran_m / mpp;
+    x += d * std::sin(course) + pos_sd * z[3];
+    y -= d * std::cos(course) + pos_sd * z[4];
+}
+}  // namespace
+
 void propagate_particle(const MotionModel& model, const StepMotion& m, double mpp, const std::array<double, 5>& z, double& x,
                         double& y, double& yaw) {
-    if (m.yaw_state) {
-        const double d = m.distance_px * (1 + model.alpha1 * m.noise_gain * z[1]);
-        const double offset = model.along_heading ? 0.0 : m.course_offset_rad;
-        const double course = yaw + offset + ((model.alpha2 * m.noise_gain) + model.alpha3 * m.turn_rad) * z[2];
-        const double pos_sd = model.eps_tran_m / mpp;
-        x += d * std::sin(course) + pos_sd * z[3];
-        y -= d * std::cos(course) + pos_sd * z[4];
+    if (m.yaw_state) {  // moved along the yaw it had, then turned by the odometry's rotation
+        translate(model, m, mpp, z, yaw, x, y);
         const bool known = std::isfinite(m.rotation_rad);
         const double sd = known ? model.yaw_sd_deg * kDeg + model.yaw_turn_sd * std::abs(m.rotation_rad) : model.yaw_unknown_sd_deg * kDeg;
         yaw = wrap_angle(yaw + (known ? m.rotation_rad : 0.0) + sd * z[0]);
         return;
     }
     yaw = wrap_angle((m.have_heading ? m.heading_rad : yaw) + model.eps_rot_deg * kDeg * z[0]);
-    const double d = m.distance_px * (1 + model.alpha1 * m.noise_gain * z[1]);
-    const double offset = model.along_heading ? 0.0 : m.course_offset_rad;
-    const double course = yaw + offset + ((model.alpha2 * m.noise_gain) + model.alpha3 * m.turn_rad) * z[2];
-    const double pos_sd = model.eps_tran_m / mpp;
-    x += d * std::sin(course) + pos_sd * z[3];
-    y -= d * std::cos(course) + pos_sd * z[4];
+    translate(model, m, mpp, z, yaw, x, y);
 }
 
 }  // namespace trn::filter

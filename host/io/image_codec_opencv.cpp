@@ -6,14 +6,22 @@
 
 namespace trn::io::detail {
 
-GrayImage decode_gray(const std::string& path) {
+namespace {
+// cv::imread with its failures as trn::Error naming the file.
+cv::Mat read(const std::string& path, int flags) {
     cv::Mat m;
     try {
-        m = cv::imread(path, cv::IMREAD_GRAYSCALE);
+        m = cv::imread(path, flags);
     } catch (const cv::Exception& e) {
         throw Error(path + ": cannot decode image (" + e.msg + ")");
     }
     if (m.empty()) throw Error(path + ": not a readable image (corrupt or unsupported format)");
+    return m;
+}
+}  // namespace
+
+GrayImage decode_gray(const std::string& path) {
+    const cv::Mat m = read(path, cv::IMREAD_GRAYSCALE);
     GrayImage img{m.cols, m.rows, std::vector<std::uint8_t>(std::size_t(m.cols) * m.rows)};
     for (int y = 0; y < m.rows; ++y) std::copy_n(m.ptr<std::uint8_t>(y), m.cols, img.pixels.data() + std::size_t(y) * m.cols);
     return img;
@@ -33,13 +41,7 @@ cv::Mat high_bytes(const cv::Mat& m) {
 }  // namespace
 
 GrayImage decode_validity(const std::string& path, std::optional<int> nodata) {
-    cv::Mat m;
-    try {
-        m = cv::imread(path, cv::IMREAD_UNCHANGED);
-    } catch (const cv::Exception& e) {
-        throw Error(path + ": cannot decode image (" + e.msg + ")");
-    }
-    if (m.empty()) throw Error(path + ": not a readable image (corrupt or unsupported format)");
+    cv::Mat m = read(path, cv::IMREAD_UNCHANGED);
     if (m.depth() == CV_16U) m = high_bytes(m);
     if (m.depth() != CV_8U) throw Error(path + ": no-data needs 8- or 16-bit pixels");
     const int channels = m.channels();

@@ -38,21 +38,13 @@ PaddedGray holes_mask(int w, int h, std::uint32_t seed) {
     return m;
 }
 
-std::vector<Pose> poses_over(std::mt19937& rng, int n, int w, int h, float smin, float smax) {
-    std::uniform_real_distribution<float> ux(-0.05f * w, 1.05f * w), uy(-0.05f * h, 1.05f * h),
-        yaw(-std::numbers::pi_v<float>, std::numbers::pi_v<float>), sc(smin, smax);
-    std::vector<Pose> poses(n);
-    for (Pose& p : poses) p = {ux(rng), uy(rng), yaw(rng), sc(rng)};
-    return poses;
-}
-
 void masked_random(Backend& dut, Backend& ref) {
     for (std::uint32_t seed = 1; seed <= 5; ++seed) {
         std::mt19937 rng(seed);
         const int mw = 60 + int(rng() % 300), mh = 60 + int(rng() % 300);
         const PaddedGray map = textured_image(mw, mh, seed), valid = holes_mask(mw, mh, seed);
         const PaddedGray templ = textured_image(9 + int(rng() % 40), 7 + int(rng() % 30), seed + 50);
-        const auto poses = poses_over(rng, 151, mw, mh, 0.5f, 1.8f);
+        const auto poses = random_poses(rng, 151, mw, mh, 0.05f, 0.5f, 1.8f);
         SCOPED_TRACE("seed " + std::to_string(seed));
         for (double min_valid : {0.9, 0.3, 0.0}) {
             ScoreOptions o;
@@ -130,7 +122,7 @@ void masked_rule(Backend& dut, Backend&) {
     std::mt19937 rng(17);
     const int mw = 160, mh = 120;
     const PaddedGray map = textured_image(mw, mh, 17), valid = holes_mask(mw, mh, 17), templ = textured_image(21, 15, 18);
-    const auto poses = poses_over(rng, 120, mw, mh, 0.7f, 1.5f);
+    const auto poses = random_poses(rng, 120, mw, mh, 0.05f, 0.7f, 1.5f);
     ScoreOptions o;
     o.min_valid_fraction = 0.0;
     const ScoringPlan plan = make_scoring_plan(templ.view(), o);
@@ -178,7 +170,7 @@ void masked_real_orthomosaic(Backend& dut, Backend& ref) {
     const GrayImage grey = load_gray(map_path), alpha = load_validity(map_path), frame = load_gray(frame_path);
     ASSERT_EQ(alpha.width, grey.width) << "the orthomosaic has no alpha";
     std::mt19937 rng(19);
-    const auto poses = poses_over(rng, 150, grey.width, grey.height, 0.6f, 0.75f);
+    const auto poses = random_poses(rng, 150, grey.width, grey.height, 0.05f, 0.6f, 0.75f);
     ScoreOptions o;
     o.sampling = Sampling::random(0.2, 5);
     const auto got = score_and_compare(dut, ref, grey.view(), alpha.view(), frame.view(), poses, o);

@@ -20,15 +20,6 @@ namespace {
 using test::PaddedGray;
 using test::textured_image;
 
-// Poses anywhere in (and a little beyond) the map, any yaw, moderate scales.
-std::vector<Pose> random_poses(std::mt19937& rng, int n, int map_w, int map_h, float margin, float smin, float smax) {
-    std::uniform_real_distribution<float> ux(-margin * map_w, (1 + margin) * map_w), uy(-margin * map_h, (1 + margin) * map_h),
-        yaw(-std::numbers::pi_v<float>, std::numbers::pi_v<float>), sc(smin, smax);
-    std::vector<Pose> poses(n);
-    for (Pose& p : poses) p = {ux(rng), uy(rng), yaw(rng), sc(rng)};
-    return poses;
-}
-
 void random_sizes(Backend& dut, Backend& ref) {
     for (std::uint32_t seed = 1; seed <= 8; ++seed) {
         std::mt19937 rng(seed);

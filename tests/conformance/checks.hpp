@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstring>
 #include <iomanip>
+#include <numbers>
+#include <random>
 #include <span>
 #include <string>
 #include <vector>
@@ -38,6 +40,15 @@ private:
     std::vector<ParticleScore> buf_;
     std::size_t n_;
 };
+
+// Poses anywhere in (and `margin` of the map's size beyond) the map, any yaw, scales in [smin, smax).
+inline std::vector<Pose> random_poses(std::mt19937& rng, int n, int map_w, int map_h, float margin, float smin, float smax) {
+    std::uniform_real_distribution<float> ux(-margin * map_w, (1 + margin) * map_w), uy(-margin * map_h, (1 + margin) * map_h),
+        yaw(-std::numbers::pi_v<float>, std::numbers::pi_v<float>), sc(smin, smax);
+    std::vector<Pose> poses(n);
+    for (Pose& p : poses) p = {ux(rng), uy(rng), yaw(rng), sc(rng)};
+    return poses;
+}
 
 // A call that must throw trn::Error with `fragment` in its message (the same on every backend).
 template <typename F>

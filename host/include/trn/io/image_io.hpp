@@ -25,6 +25,8 @@ GrayImage load_gray(const std::string& path);
 // orthomosaic tools write no-data. Empty (width 0) when the file has no alpha channel and `nodata`
 // is not given: every pixel is valid. 16-bit files are compared by their high byte, as load_gray reads them.
 GrayImage load_validity(const std::string& path, std::optional<int> nodata = std::nullopt);
+// load_validity's result as Backend::upload_map takes it: an empty view when every pixel is valid.
+inline GrayView validity_view(const GrayImage& valid) { return valid.width > 0 ? valid.view() : GrayView{}; }
 void save_gray(const std::string& path, GrayView image);
 // Writes a signed gradient as 8-bit PNG: 128 + g/8 clamped, so zero is mid-grey.
 void save_gradient(const std::string& path, ImageView<const std::int16_t> g);

@@ -23,7 +23,7 @@ struct Map {
     std::optional<GeoOrigin> origin;
 
     // The no-data mask as Backend::upload_map takes it (an empty view when every pixel is valid).
-    GrayView valid_view() const { return valid.width > 0 ? valid.view() : GrayView{}; }
+    GrayView valid_view() const { return validity_view(valid); }
     double width_m() const { return image.width * metres_per_pixel; }
     double height_m() const { return image.height * metres_per_pixel; }
 };
