@@ -16,6 +16,7 @@
 #include "heading_options.hpp"
 #include "odometry_option.hpp"
 #include "options.hpp"
+#include "photo_import_options.hpp"
 #include "progress.hpp"
 #include "trn/error.hpp"
 #include "trn/registry.hpp"
@@ -49,7 +50,17 @@ struct LocalizeArgs {
     bool no_plots = false, force = false;
     FilterModelArgs model;
     HeadingArgs heading;
+    // --photos DIR: imported into --dataset first (import-photos), then localized from it.
+    std::string photos;
+    PhotoImportArgs photo;
+    bool odometry_given = false, heading_given = false, max_particles_given = false;
+    std::string photo_options_given;  // the first import option given (they need --photos)
 };
+
+// With a uniform yaw prior the initial set must cover every yaw over the start disc: on the real
+// flights 2000 particles missed the 2x-of-the-compass target on 2 seeds of 5, 6000 met it on all
+// (docs/RESULTS.md, "Compass-less localization").
+constexpr std::size_t kCompasslessUniformMaxParticles = 6000;
 
 // "A,B" as two finite reals, or nothing.
 std::optional<std::pair<double, double>> parse_pair(const std::string& text) {
@@ -80,15 +91,64 @@ CLI::Validator pair_in(double lo1, double hi1, double lo2, double hi2, const std
 
 void progress_bar(std::size_t done, std::size_t total) { draw_progress(done, total, "steps"); }
 
-void localize(const LocalizeArgs& a) {
-    if (a.min_particles > a.max_particles)
-        throw Error("--min-particles " + std::to_string(a.min_particles) + " exceeds --max-particles " + std::to_string(a.max_particles));
+bool georeferenced_map_file(const std::string& map) {
+    const std::string ext = std::filesystem::path(map).extension().string();
+    return ext == ".tif" || ext == ".tiff" || ext == ".TIF" || ext == ".TIFF";
+}
+
+// `--photos DIR`, before anything is read: photos carry no odometry and no compass, so visual
+// odometry and --heading none (anything else is refused by name), and the first GPS fix is the
+// start when the map can place it.
+void apply_photo_defaults(LocalizeArgs& a) {
+    if (a.odometry_given && a.odometry != "visual")
+        throw Error("--odometry " + a.odometry + ": photos carry no recorded odometry; with --photos the odometry is visual");
+    if (a.heading_given && a.heading.heading != "none")
+        throw Error("--heading " + a.heading.heading + ": photos carry no compass heading; with --photos the heading is none");
+    if (a.inputs.map.empty()) throw Error("--photos: needs --map (the orthophoto to localize the photos on)");
+    a.odometry = "visual";
+    a.heading.heading = "none";
+    if (!a.start.empty() || !a.start_latlon.empty() || a.start_from_gps_m > 0) return;
+    if (a.photo.map_origin.empty() && !georeferenced_map_file(a.inputs.map))
+        throw Error("--photos: give --start X,Y (the first photo's map pixel), or a georeferenced map (a GeoTIFF, or --map-origin "
+                    "LAT,LON) so that the first photo's GPS fix is the start");
+    a.start_from_gps_m = a.init_radius_m;
+    std::cerr << "trnkit: note: --photos: starting within --init-radius-m " << a.init_radius_m << " m of the first photo's GPS fix\n";
+}
+
+// The import into --dataset (an import-photos folder: replaced whole or not at all; its localize/
+// output stays), after every check of the options.
+void import_photos_into_dataset(LocalizeArgs& a) {
+    sim::PhotoImportOptions& o = a.photo.o;
+    o.photos = a.photos, o.out = a.inputs.dataset, o.map = a.inputs.map, o.metres_per_pixel = a.inputs.metres_per_pixel, o.force = a.force;
+    try {
+        run_photo_import(a.photo);
+    } catch (const FieldError& e) {  // the import's own names for what localize calls --photos and --dataset
+        if (e.field() == "photos") throw FieldError("--photos", e.detail());
+        if (e.field() == "out") throw FieldError("dataset", e.detail());
+        throw;
+    }
+    a.inputs.map.clear(), a.inputs.metres_per_pixel = 0;  // flight.json names them now
+}
+
+void localize(LocalizeArgs a) {
+    if (a.photos.empty() && !a.photo_options_given.empty()) throw Error(a.photo_options_given + ": only with --photos (or import-photos)");
     std::vector<std::string> starts;
     for (const auto& [given, flag] : {std::pair{!a.start.empty(), "--start"}, {!a.start_latlon.empty(), "--start-latlon"}, {a.start_from_gps_m > 0, "--start-from-gps"}})
         if (given) starts.push_back(flag);
     if (starts.size() > 1)
         throw Error(starts[0] + (starts.size() == 3 ? ", " + starts[1] + " and " + starts[2] : " and " + starts[1]) + ": give one of them, not " +
                     (starts.size() == 3 ? "all three" : "both"));
+    if (!a.photos.empty()) apply_photo_defaults(a);
+    if (a.heading.heading == "none" && std::isnan(a.heading.start_yaw_deg) && !a.max_particles_given)
+        a.max_particles = std::max(a.max_particles, kCompasslessUniformMaxParticles);
+    if (a.min_particles > a.max_particles)
+        throw Error("--min-particles " + std::to_string(a.min_particles) + " exceeds --max-particles " + std::to_string(a.max_particles));
+    if (!a.photos.empty()) {
+        // Both folders before the import: the one it replaces, and the report's.
+        io::check_output_folder(a.inputs.dataset, "import-photos", a.force, "--dataset");
+        io::check_output_folder(a.out.empty() ? a.inputs.dataset + "/localize" : a.out, "localize", a.force);
+        import_photos_into_dataset(a);
+    }
     const localize::AirInputs in = localize::resolve_air_inputs(a.inputs);
     const std::string out = a.out.empty() ? a.inputs.dataset + "/localize" : a.out;
     // The default folder comes with the dataset: a link there was planted, not chosen.
@@ -177,6 +237,7 @@ void localize(const LocalizeArgs& a) {
                                         : std::isnan(a.start_heading_deg) ? "first magnetometer reading" : "--start-heading-deg"},
                       {"flight_json", in.has_flight_json ? "used" : "absent (camera, map and resolution from options)"},
                       {"georeference", in.georeference.empty() ? "none" : in.georeference},
+                      {"photos", a.photos.empty() ? "none" : a.photos + " (imported into the dataset first)"},
                       {"map_no_data", map.valid.width > 0 ? "masked (alpha, GeoTIFF mask or --nodata)" : "none"}};
     report.numbers = {{"init_radius_m", cfg.init_radius_m}, {"reinit_radius_m", cfg.reinit_radius_m},
                       {"start_x", result.run.start_x}, {"start_y", result.run.start_y}, {"particles", static_cast<double>(a.particles)},
@@ -211,7 +272,13 @@ void localize(const LocalizeArgs& a) {
 void add_localize_command(CLI::App& app) {
     auto a = std::make_shared<LocalizeArgs>();
     auto* cmd = app.add_subcommand("localize", "Localize an AIR flight folder on its map with the DPC-PFL particle filter");
-    cmd->add_option("--dataset", a->inputs.dataset, "AIR flight folder (metadata.csv, frames; flight.json optional)")->required();
+    cmd->add_option("--dataset", a->inputs.dataset,
+                    "AIR flight folder (metadata.csv, frames; flight.json optional); with --photos: the AIR folder the photos are imported into")
+        ->required();
+    cmd->add_option("--photos", a->photos,
+                    "Folder of geotagged camera photos (JPEG + EXIF): imported into --dataset first (as import-photos does; needs --map and "
+                    "--altitude-agl), then localized with visual odometry and no compass");
+    add_photo_import_options(*cmd, a->photo);
     cmd->add_option("--map", a->inputs.map,
                     "Localization map image (default: the one flight.json names); a .tif/.tiff is read as a GeoTIFF (GDAL): "
                     "resolution and latitude/longitude from its georeference");
@@ -240,7 +307,8 @@ void add_localize_command(CLI::App& app) {
         ->capture_default_str()
         ->transform(whole_in(1, kMaxParticles));
     cmd->add_option("--min-particles", a->min_particles, "KLD sampling: fewest particles")->capture_default_str()->transform(whole_in(1, kMaxParticles));
-    cmd->add_option("--max-particles", a->max_particles, "KLD sampling: most particles (and the initial set)")
+    cmd->add_option("--max-particles", a->max_particles,
+                    "KLD sampling: most particles (and the initial set); default 6000 with --heading none and a uniform yaw prior")
         ->capture_default_str()
         ->transform(whole_in(1, kMaxParticles));
     cmd->add_option("--rate", a->rate_hz, "Filter rate in Hz (every fps/rate-th frame is used)")->capture_default_str()->check(real_in(0, 1000, Open::low));
@@ -275,7 +343,13 @@ void add_localize_command(CLI::App& app) {
                         "Odometry fed to the filter: folder (metadata.csv's SvoX/SvoY) or visual (computed from the frames)");
     add_filter_model_options(*cmd, a->model);
     add_heading_options(*cmd, a->heading);
-    cmd->callback([a] { localize(*a); });
+    cmd->callback([a, cmd] {
+        a->odometry_given = cmd->count("--odometry") > 0, a->heading_given = cmd->count("--heading") > 0;
+        a->max_particles_given = cmd->count("--max-particles") > 0;
+        for (const char* o : {"--altitude-agl", "--sensor-width-mm", "--ignore-orientation", "--map-origin"})
+            if (cmd->count(o) > 0 && a->photo_options_given.empty()) a->photo_options_given = o;
+        localize(*a);
+    });
 }
 
 }  // namespace trn::cli
