@@ -256,6 +256,7 @@ void localize(LocalizeArgs a) {
     if (gps.camera_gps && !gps.fixes.empty() && in.to_map_pixel) {  // the camera's fixes beside the estimates
         const localize::GpsComparison c = localize::compare_with_gps(result, gps, in.to_map_pixel, mpp);
         report.files["gps_track.csv"] = c.csv;
+        report.reference = {"camera GPS (reference, lags and drifts)", c.fix_px};
         report.strings["gps_reference"] = std::string("metadata.csv Latitude,Longitude: ") + localize::kCameraGpsCaveat;
         report.numbers["estimate_to_gps_mean_m"] = c.mean_m, report.numbers["estimate_to_gps_final_m"] = c.final_m;
         report.numbers["estimate_to_gps_max_m"] = c.max_m, report.numbers["gps_fixes_compared"] = static_cast<double>(c.compared);

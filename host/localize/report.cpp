@@ -149,7 +149,7 @@ std::string gp_number(double v) {
 }
 
 PlotFiles plot_run(const std::string& folder, const std::vector<LocalizationRow>& rows, const LocalizationSummary& s, GrayView map,
-                   double mpp, const std::string& title) {
+                   double mpp, const std::string& title, const ReferenceTrack& reference) {
     // gnuplot runs in `folder` and the script names only these fixed files; the title (from a
     // flight.json or an option) enters only as a gnuplot_string.
     const std::string raw = "map_plot.gray", data = "plot_data.tsv";
@@ -165,10 +165,18 @@ PlotFiles plot_run(const std::string& folder, const std::vector<LocalizationRow>
     cv::resize(src, dst, dst.size(), 0, 0, cv::INTER_AREA);
     std::ostringstream table;
     table.precision(10);
-    for (const LocalizationRow& r : rows)
+    const bool has_reference = !reference.px.empty();
+    if (has_reference && reference.px.size() != rows.size())
+        throw Error("reference track '" + reference.title + "': " + std::to_string(reference.px.size()) + " points for " +
+                    std::to_string(rows.size()) + " rows");
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        const LocalizationRow& r = rows[i];
         table << r.distance_m / 1000 << '\t' << r.truth_x * mpp << '\t' << r.truth_y * mpp << '\t' << r.odometry_x * mpp << '\t'
               << r.odometry_y * mpp << '\t' << r.estimate_x * mpp << '\t' << r.estimate_y * mpp << '\t' << r.error_m << '\t'
-              << r.odometry_error_m << '\n';
+              << r.odometry_error_m;
+        if (has_reference) table << '\t' << gp_number(reference.px[i][0] * mpp) << '\t' << gp_number(reference.px[i][1] * mpp);
+        table << '\n';
+    }
 
     std::ostringstream gp;
     const double px_m = factor * mpp;
@@ -178,6 +186,8 @@ PlotFiles plot_run(const std::string& folder, const std::vector<LocalizationRow>
     for (const LocalizationRow& r : rows)
         for (auto [x, y] : {std::pair{r.truth_x, r.truth_y}, std::pair{r.odometry_x, r.odometry_y}, std::pair{r.estimate_x, r.estimate_y}})
             if (std::isfinite(x) && std::isfinite(y)) x0 = std::min(x0, x * mpp), x1 = std::max(x1, x * mpp), y0 = std::min(y0, y * mpp), y1 = std::max(y1, y * mpp);
+    for (const auto& [x, y] : reference.px)
+        if (std::isfinite(x) && std::isfinite(y)) x0 = std::min(x0, x * mpp), x1 = std::max(x1, x * mpp), y0 = std::min(y0, y * mpp), y1 = std::max(y1, y * mpp);
     const double margin = 50;
     gp << io::gnuplot_png_terminal(1100, 1000, "sans,11") << "set output " << gnuplot_string(trajectory.name) << "\n"
        << "set title " << gnuplot_string(title + ": trajectories on the map") << "\n"
@@ -189,7 +199,9 @@ PlotFiles plot_run(const std::string& folder, const std::vector<LocalizationRow>
        << " origin=(0,0) flipy with image notitle, \\\n"
        << "  " << gnuplot_string(data) << (truth ? " using 2:3 with lines lw 3 lc rgb '#1a9850' title 'ground truth', \\\n  ''" : "")
        << " using 4:5 with lines lw 2 lc rgb '#d73027' title 'visual odometry', \\\n"
-       << "  '' using 6:7 with lines lw 2 lc rgb '#4575b4' title 'DPC-PFL estimate'\n";
+       << "  '' using 6:7 with lines lw 2 lc rgb '#4575b4' title 'DPC-PFL estimate'"
+       << (has_reference ? ", \\\n  '' using 10:11 with points pt 7 ps 1.2 lc rgb '#fdae61' title " + gnuplot_string(reference.title) : std::string())
+       << "\n";
     if (!truth) {  // no ground truth, no errors: the trajectories only
         io::run_gnuplot({folder, "plot.gp", gp.str(), {{raw, small}, {data, table.str()}}, "gnuplot.log", {trajectory}});
         return {trajectory.path, ""};

@@ -177,7 +177,7 @@ TEST_F(PhotoCli, ErrorsNameTheFlagOrTheFile) {
 // localizes them without a compass, with visual odometry, from the first GPS fix.
 TEST_F(PhotoCli, LocalizePhotosImportsThenLocalizesInOneCommand) {
     const std::string one = "localize --photos " + path("photos") + " --dataset " + path("air") + " --map " + path("map.png") +
-                            " --mpp 0.5 --map-origin 30.17,-98.09 --altitude-agl 58.34 --init-radius-m 15 --backend cpu --no-plots";
+                            " --mpp 0.5 --map-origin 30.17,-98.09 --altitude-agl 58.34 --init-radius-m 15 --backend cpu";
     auto r = run_trnkit(one);
     ASSERT_EQ(r.code, 0) << r.output;
     EXPECT_HAS(r.output, "5 photos -> " + path("air") + ": 455x341 grey frames");
@@ -193,6 +193,10 @@ TEST_F(PhotoCli, LocalizePhotosImportsThenLocalizesInOneCommand) {
     EXPECT_HAS(j["photos"].get<std::string>(), path("photos"));
     EXPECT_EQ(j["gps_fixes_compared"], 5);
     EXPECT_LT(j["estimate_to_gps_final_m"].get<double>(), 10.0);  // the fixes are exact here: this is the error
+    // The fixes drawn beside the estimates, as a reference (points), on the trajectory plot.
+    EXPECT_TRUE(fs::exists(path("air/localize/trajectory.png")));
+    EXPECT_HAS(read_text(path("air/localize/plot.gp")), "using 10:11 with points");
+    EXPECT_HAS(read_text(path("air/localize/plot.gp")), "camera GPS (reference");
 
     // Again: the import replaces its own folder, the localize output inside it stays localize's.
     std::ofstream(path("air/localize/notes.txt")) << "mine";

@@ -2,6 +2,7 @@
 // A localization run on disk: per-step CSV, summary JSON and gnuplot plots (trajectories on the
 // map as the dissertation's Fig. 3.10, error over distance with trend lines as its Fig. 3.9).
 #include <map>
+#include <array>
 #include <string>
 #include <utility>
 #include <vector>
@@ -41,11 +42,18 @@ struct PlotFiles {
     std::string trajectory_png, error_png;  // error_png "" when the flight has no ground truth
 };
 
+// A reference track drawn as points beside the estimates (a camera's GPS fixes): one map pixel per
+// result row, NaN where the row has none. It is no ground truth and enters no error.
+struct ReferenceTrack {
+    std::string title;                        // the legend, e.g. "camera GPS (reference)"
+    std::vector<std::array<double, 2>> px;    // per row; empty: no track
+};
+
 // Draws both plots into `folder` with gnuplot (run as a subprocess). The map is drawn under the
 // trajectories, downscaled to at most 1000 pixels. Throws trn::Error when gnuplot is missing or fails
 // (this is the only step that needs it).
 PlotFiles plot_run(const std::string& folder, const std::vector<LocalizationRow>& rows, const LocalizationSummary& summary,
-                   GrayView map, double metres_per_pixel, const std::string& title);
+                   GrayView map, double metres_per_pixel, const std::string& title, const ReferenceTrack& reference = {});
 
 }  // namespace trn::localize
 TRN_API_END

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "trn/localize/localization.hpp"
+#include "trn/localize/report.hpp"
 #include "trn/export.hpp"
 
 TRN_API_BEGIN
@@ -24,6 +25,7 @@ struct ReportOptions {
     std::map<std::string, double> numbers;       // NaN: not given, left out of summary.json
     std::string after_summary;                   // printed after the summary (e.g. the final lat/lon)
     std::map<std::string, std::string> files;    // the caller's own files: plain name in the folder -> contents
+    ReferenceTrack reference;                    // drawn on the trajectory plot (camera GPS), per result row
 };
 
 // Writes localization.csv, summary.json and (with plots) the plots of `result` over `map` into
