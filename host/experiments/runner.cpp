@@ -7,6 +7,7 @@
 #include <iostream>
 #include <set>
 
+#include "flight_settings.hpp"
 #include "study.hpp"
 #include "world.hpp"
 #include "trn/error.hpp"
@@ -92,7 +93,10 @@ std::string command_prefix(const ExperimentOptions& o, const std::string& out) {
         std::snprintf(text, sizeof text, " --init-radius-m %.17g", o.init_radius_m);  // reads back as the same double
         radius = text;
     }
-    return "trnkit experiment " + o.study + (o.quick ? " --quick" : "") + " --seed " + std::to_string(o.seed) + radius + " --backend " +
+    std::string profile;
+    if (o.profile != "ours") profile += " --profile " + shell_word(o.profile);
+    if (!o.lock_monitor.empty()) profile += " --lock-monitor " + shell_word(o.lock_monitor);
+    return "trnkit experiment " + o.study + (o.quick ? " --quick" : "") + " --seed " + std::to_string(o.seed) + radius + profile + " --backend " +
            shell_word(o.backend) + " --out " + shell_word(out);
 }
 
@@ -129,6 +133,23 @@ std::size_t run_experiment(const ExperimentOptions& o) {
     config["quick"] = o.quick;
     config["seed"] = o.seed;
     config["backend"] = o.backend;
+    // The filter's profile and lock monitor are part of the configuration (jobs of another are refused, not mixed).
+    const filter::Profile profile = [&] {
+        try {
+            return filter::parse_profile(o.profile);
+        } catch (const Error&) {
+            throw Error("experiment: `profile` '" + io::quote_input(o.profile) + "': unknown; expected ours or dissertation");
+        }
+    }();
+    config["profile"] = filter::to_string(profile);
+    if (!o.lock_monitor.empty() && o.lock_monitor != "on" && o.lock_monitor != "off")
+        throw Error("experiment: `lock_monitor` '" + io::quote_input(o.lock_monitor) + "': expected on or off");
+    if (config.contains("filter")) {  // the studies that run the filter
+        if (profile == filter::Profile::Dissertation) config["filter"] = kDissertationFilter;
+        config["lock_monitor"] = o.lock_monitor.empty() ? filter::profile_config(profile).lock.enabled : o.lock_monitor == "on";
+    } else if (!o.lock_monitor.empty()) {
+        throw Error("experiment " + o.study + ": `lock_monitor`: this study runs no particle filter (it scores poses only)");
+    }
     if (!std::isnan(o.init_radius_m)) {  // part of the configuration: jobs of another radius are refused, not mixed
         if (!config.contains("init_radius_m"))
             throw Error("experiment " + o.study + ": `init_radius_m`: this study has no start radius (only conversion, robustness, odometry, odometry-wind)");
@@ -141,7 +162,9 @@ std::size_t run_experiment(const ExperimentOptions& o) {
     for (const Json& j : jobs)
         if (!ids.insert(j.at("id").get<std::string>()).second) throw Error("experiment: duplicate job id " + j.at("id").dump());
 
-    const std::string out = o.out.empty() ? "experiments/" + o.study + (o.quick ? "-quick" : "") : o.out;
+    const std::string out = o.out.empty() ? "experiments/" + o.study + (profile == filter::Profile::Dissertation ? "-dissertation" : "") +
+                                                (o.quick ? "-quick" : "")
+                                          : o.out;
     if (o.list_jobs && o.list_ids_only) {  // for scripts: each line is one --job argument, never shell text
         for (const Json& j : jobs) std::cout << j.at("id").get<std::string>() << "\n";
         return jobs.size();
@@ -223,8 +246,14 @@ std::size_t run_experiment(const ExperimentOptions& o) {
     if (missing)
         markdown = "**PARTIAL RUN: " + std::to_string(outputs.size()) + " of " + std::to_string(jobs.size()) +
                    " jobs finished; cells are means over the finished jobs only.**\n\n" + markdown;
+    {
+        std::string head = "Profile: " + config["profile"].get<std::string>();
+        if (config.contains("lock_monitor")) head += std::string(", lock monitor ") + (config["lock_monitor"].get<bool>() ? "on" : "off");
+        head += "; " + std::to_string(outputs.size()) + " of " + std::to_string(jobs.size()) + " jobs";
+        markdown = head + ".\n\n" + markdown;
+    }
     io::write_file_atomic(out + "/results.md", markdown);
-    Json prov{{"study", o.study}, {"seed", o.seed}, {"backend", o.backend},
+    Json prov{{"study", o.study}, {"profile", config["profile"]}, {"seed", o.seed}, {"backend", o.backend},
               {"backend_devices", devices}, {"jobs", jobs.size()}, {"jobs_merged", outputs.size()}, {"job_wall_s_total", wall_s}, {"config", config}};
     io::add_provenance(prov);
     write_json(out + "/provenance.json", prov);

@@ -1,6 +1,7 @@
 #pragma once
 // `trnkit experiment NAME`: reproduces one of the dissertation's studies (metrics, heading,
-// sampling, conversion, robustness, odometry; odometry-wind on the -wind presets). Every study is split into independent jobs; each
+// sampling, conversion, robustness, odometry; odometry-wind on the -wind presets) under a filter
+// profile (ours or dissertation). Every study is split into independent jobs; each
 // job writes one JSON into the output folder (finished jobs are skipped, so runs resume), and
 // `merge` turns the job outputs into Markdown + CSV tables with the dissertation's numbers in
 // adjacent columns, gnuplot plots and a provenance JSON. A merge refuses job outputs whose
@@ -26,6 +27,8 @@ struct ExperimentOptions {
     std::string shard = "1/1";   // run jobs i, i+n, i+2n ... (1-based i)
     std::string job;             // run only the job with this id (what --list-jobs prints)
     std::uint64_t seed = 1;
+    std::string profile = "ours";  // the filter's settings: ours or dissertation (filter::Profile)
+    std::string lock_monitor;      // "on", "off"; "": the profile's (ours on, dissertation off)
     double init_radius_m = NAN;  // flight studies: particles start within this radius (m); NaN: the study's 300 m
     bool quick = false;          // reduced but meaningful version (CI)
     bool list_jobs = false;      // print one command per job and exit
