@@ -28,6 +28,12 @@ void add_experiment_command(CLI::App& app) {
                     "Flight and sampling studies: watch for a wrong lock, on or off (default: the profile's; ours on, dissertation off); "
                     "part of the configuration")
         ->check(CLI::IsMember({"on", "off"}));
+    cmd->add_option("--results", a->results,
+                    "Results store: one JSON line per finished job, appended atomically (default: results/NAME/PROFILE[-quick].jsonl; "
+                    "'none': not written)");
+    cmd->add_flag("--resume", a->resume,
+                  "Skip the jobs the results store holds for this configuration and merge from it (lines of another configuration "
+                  "are ignored, and counted in a note); with --list-jobs=ids only the jobs still to run");
     cmd->add_option("--init-radius-m", a->init_radius_m,
                     "Flight studies: particles start within this radius (m) of the true start (default: 300, the dissertation's); "
                     "part of the configuration")

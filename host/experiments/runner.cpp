@@ -8,8 +8,10 @@
 #include <set>
 
 #include "flight_settings.hpp"
+#include "results_store.hpp"
 #include "study.hpp"
 #include "world.hpp"
+#include "trn/build_info.hpp"
 #include "trn/error.hpp"
 #include "trn/parse_number.hpp"
 #include "trn/experiments/experiment.hpp"
@@ -96,6 +98,8 @@ std::string command_prefix(const ExperimentOptions& o, const std::string& out) {
     std::string profile;
     if (o.profile != "ours") profile += " --profile " + shell_word(o.profile);
     if (!o.lock_monitor.empty()) profile += " --lock-monitor " + shell_word(o.lock_monitor);
+    if (!o.results.empty()) profile += " --results " + shell_word(o.results);
+    if (o.resume) profile += " --resume";
     return "trnkit experiment " + o.study + (o.quick ? " --quick" : "") + " --seed " + std::to_string(o.seed) + radius + profile + " --backend " +
            shell_word(o.backend) + " --out " + shell_word(out);
 }
@@ -165,9 +169,17 @@ std::size_t run_experiment(const ExperimentOptions& o) {
     const std::string out = o.out.empty() ? "experiments/" + o.study + (profile == filter::Profile::Dissertation ? "-dissertation" : "") +
                                                 (o.quick ? "-quick" : "")
                                           : o.out;
+    // The results store: read always (appends skip the jobs it holds), used to skip and merge with --resume.
+    ResultsStore store(o.results == "none" ? std::string() : o.results.empty() ? default_results_path(o.study, config["profile"], o.quick) : o.results,
+                       config);
+    if (o.resume && !store.enabled()) throw Error("experiment: `resume` needs the results store (not `results` none)");
+    const std::string store_note = store.load();
+    if (o.resume && !store_note.empty() && !o.list_jobs) std::cerr << "experiment " << o.study << ": note: " << store_note << "\n";
     if (o.list_jobs && o.list_ids_only) {  // for scripts: each line is one --job argument, never shell text
-        for (const Json& j : jobs) std::cout << j.at("id").get<std::string>() << "\n";
-        return jobs.size();
+        std::size_t listed = 0;
+        for (const Json& j : jobs)
+            if (!(o.resume && store.has(j.at("id").get<std::string>()))) std::cout << j.at("id").get<std::string>() << "\n", ++listed;
+        return listed;
     }
     if (o.list_jobs) {
         for (const Json& j : jobs) std::cout << command_prefix(o, out) << " --job " << shell_word(j.at("id").get<std::string>()) << " --no-merge\n";
@@ -185,7 +197,9 @@ std::size_t run_experiment(const ExperimentOptions& o) {
     if (ec) throw Error(jobs_dir + ": cannot create folder (" + ec.message() + ")");
     auto job_path = [&](const Json& j) { return jobs_dir + "/" + j.at("id").get<std::string>() + ".json"; };
     // A finished job is reused only when it was made with exactly this configuration.
+    auto in_store = [&](const Json& j) { return o.resume && store.has(j.at("id").get<std::string>()); };
     auto finished = [&](const Json& j) {
+        if (in_store(j)) return true;
         const std::string path = job_path(j);
         if (!fs::exists(path)) return false;
         const Json done = read_json(path);
@@ -218,6 +232,8 @@ std::size_t run_experiment(const ExperimentOptions& o) {
                 Json job{{"config", config}, {"params", params}, {"result", result}, {"wall_s", wall}, {"backend_device", backend->info().device}};
                 io::add_provenance(job);
                 write_json(job_path(params), job);
+                if (!store.has(params.at("id").get<std::string>()))
+                    store.append(params, result, wall, backend->info().device, std::string(build_info().git_commit));
             }
             if (o.progress) progress_bar(todo.size(), todo.size(), "done");
         }
@@ -225,7 +241,7 @@ std::size_t run_experiment(const ExperimentOptions& o) {
     if (o.no_merge) return 0;
 
     std::vector<Json> outputs;
-    std::size_t missing = 0;
+    std::size_t missing = 0, from_store = 0;
     double wall_s = 0;
     std::set<std::string> devices;
     for (const Json& j : jobs) {
@@ -233,7 +249,13 @@ std::size_t run_experiment(const ExperimentOptions& o) {
             ++missing;
             continue;
         }
-        outputs.push_back(read_json(job_path(j)));
+        const std::string id = j.at("id").get<std::string>();
+        if (in_store(j)) {
+            outputs.push_back(store.output(id));
+            ++from_store;
+        } else {
+            outputs.push_back(read_json(job_path(j)));
+        }
         wall_s += outputs.back().value("wall_s", 0.0);
         devices.insert(outputs.back().value("backend_device", std::string("?")));
     }
@@ -250,10 +272,12 @@ std::size_t run_experiment(const ExperimentOptions& o) {
         std::string head = "Profile: " + config["profile"].get<std::string>();
         if (config.contains("lock_monitor")) head += std::string(", lock monitor ") + (config["lock_monitor"].get<bool>() ? "on" : "off");
         head += "; " + std::to_string(outputs.size()) + " of " + std::to_string(jobs.size()) + " jobs";
+        if (from_store) head += " (" + std::to_string(from_store) + " from the results store " + store.path() + ", configuration " + store.hash() + ")";
         markdown = head + ".\n\n" + markdown;
     }
     io::write_file_atomic(out + "/results.md", markdown);
     Json prov{{"study", o.study}, {"profile", config["profile"]}, {"seed", o.seed}, {"backend", o.backend},
+              {"results_store", store.path()}, {"config_hash", store.hash()}, {"jobs_from_store", from_store},
               {"backend_devices", devices}, {"jobs", jobs.size()}, {"jobs_merged", outputs.size()}, {"job_wall_s_total", wall_s}, {"config", config}};
     io::add_provenance(prov);
     write_json(out + "/provenance.json", prov);
