@@ -40,6 +40,7 @@ struct DemoArgs {
     FilterModelArgs model;
     HeadingArgs heading;
     std::size_t max_particles = filter::FilterConfig{}.max_particles;
+    const CLI::Option* max_particles_given = nullptr;
 };
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
@@ -50,6 +51,7 @@ void progress_bar(std::size_t done, std::size_t total) { draw_progress(done, tot
 
 void demo(const DemoArgs& a) {
     namespace fs = std::filesystem;
+    check_filter_model_options(a.model);
     const auto t0 = std::chrono::steady_clock::now();
     const sim::Scenario& preset = sim::find_scenario(a.scenario);
     const double distance_km = std::isnan(a.distance_km) ? (preset.one_loop ? preset.distance_m() / 1000 : 2.0) : a.distance_km;
@@ -105,13 +107,14 @@ void demo(const DemoArgs& a) {
     localize::LocalizerConfig& lc = spec.localizer;  // the dissertation's choices: KLD sampling, logistic:0.2
     lc.scoring.template_width = a.template_width;
     if (a.sparse < 1) lc.scoring.sampling = Sampling::random(a.sparse, a.seed);
+    lc.filter = filter::profile_config(filter::parse_profile(a.model.profile));
     lc.filter.metres_per_pixel = map.metres_per_pixel;
     lc.filter.seed = a.seed;
     lc.filter.init_radius_m = a.init_radius_m;
     apply_filter_model_options(a.model, lc.filter);
-    lc.filter.max_particles = a.max_particles;
-    if (lc.filter.min_particles > a.max_particles)
-        throw Error("--max-particles " + std::to_string(a.max_particles) + " is below the " + std::to_string(lc.filter.min_particles) + " fewest particles");
+    if (a.max_particles_given->count() || a.model.profile == "ours") lc.filter.max_particles = a.max_particles;
+    if (lc.filter.min_particles > lc.filter.max_particles)
+        throw Error("--max-particles " + std::to_string(lc.filter.max_particles) + " is below the " + std::to_string(lc.filter.min_particles) + " fewest particles");
     apply_heading_options(a.heading, lc);
     localize::RunHooks hooks;
     hooks.progress = progress_bar;
@@ -124,10 +127,10 @@ void demo(const DemoArgs& a) {
     localize::ReportOptions report;
     report.owner = "demo", report.folder_name = "--out", report.force = force, report.plots = !a.no_plots, report.plot_title = preset.name;
     report.odometry = a.odometry;
-    report.strings = {{"scenario", preset.name}};
+    report.strings = {{"scenario", preset.name}, {"profile", a.model.profile}};
     report.numbers = {{"map_year", static_cast<double>(a.map_year)}, {"flight_year", static_cast<double>(a.flight_year)},
                       {"init_radius_m", a.init_radius_m}};
-    if (a.max_particles != filter::FilterConfig{}.max_particles) report.numbers["max_particles"] = static_cast<double>(a.max_particles);
+    if (lc.filter.max_particles != filter::FilterConfig{}.max_particles) report.numbers["max_particles"] = static_cast<double>(lc.filter.max_particles);
     if (a.heading.heading == "none") {
         report.strings["start_heading"] = "--heading none: yaw prior " + describe_yaw_prior(a.heading);
         report.numbers["start_yaw_deg"] = a.heading.start_yaw_deg, report.numbers["start_yaw_sd_deg"] = lc.filter.init_heading_sd_deg;
@@ -165,7 +168,9 @@ void add_demo_command(CLI::App& app) {
                         "Odometry fed to the filter: simulated (statistical drift, sim/sensors.hpp) or visual (computed from the frames)");
     add_filter_model_options(*cmd, a->model);
     add_heading_options(*cmd, a->heading);
-    cmd->add_option("--max-particles", a->max_particles, "KLD sampling: most particles (and the initial set)")
+    a->max_particles_given = cmd->add_option("--max-particles", a->max_particles,
+                                             "KLD sampling: most particles (and, with --profile ours, the initial set; dissertation: " +
+                                                 std::to_string(filter::kDissertationMaxParticles) + ", a safety cap, and a 500-particle initial set)")
         ->capture_default_str()
         ->transform(whole_in(1, kMaxParticles));
     cmd->callback([a] { demo(*a); });

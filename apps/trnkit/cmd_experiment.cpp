@@ -19,6 +19,21 @@ void add_experiment_command(CLI::App& app) {
     cmd->add_option("--out", a->out, "Output folder (default: experiments/NAME[-quick])");
     cmd->add_option("--backend", a->backend, "Scoring backend (cpu, cpu-ref, opencl:0, vulkan:0 ...)")->capture_default_str();
     cmd->add_option("--seed", a->seed, "Seed of maps, flights and filters")->capture_default_str()->transform(any_seed());
+    cmd->add_option("--profile", a->profile,
+                    "Filter settings: ours (trnkit's reading, the default) or dissertation (the text as written where it is "
+                    "unambiguous; docs/PROFILES.md); part of the configuration, default --out experiments/NAME-dissertation")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"ours", "dissertation"}));
+    cmd->add_option("--lock-monitor", a->lock_monitor,
+                    "Flight and sampling studies: watch for a wrong lock, on or off (default: the profile's; ours on, dissertation off); "
+                    "part of the configuration")
+        ->check(CLI::IsMember({"on", "off"}));
+    cmd->add_option("--results", a->results,
+                    "Results store: one JSON line per finished job, appended atomically (default: results/NAME/PROFILE[-quick].jsonl; "
+                    "'none': not written)");
+    cmd->add_flag("--resume", a->resume,
+                  "Skip the jobs the results store holds for this configuration and merge from it (lines of another configuration "
+                  "are ignored, and counted in a note); with --list-jobs=ids only the jobs still to run");
     cmd->add_option("--init-radius-m", a->init_radius_m,
                     "Flight studies: particles start within this radius (m) of the true start (default: 300, the dissertation's); "
                     "part of the configuration")

@@ -40,10 +40,14 @@ struct LocalizeArgs {
     std::uint64_t seed = 1;
     double rate_hz = 5, sparse = 1;
     double max_tilt_deg = filter::kDefaultMaxTiltDeg;
+    // Defaults: the profile's (ours: 1000, 100, 2000; dissertation: 500, 100, its safety cap);
+    // an option given replaces it.
     std::size_t particles = 1000, min_particles = 100, max_particles = 2000;
+    const CLI::Option *particles_given = nullptr, *min_given = nullptr, *max_given = nullptr, *init_radius_given = nullptr;
     int template_width = 160;
     // Start prior. 50 m, not the dissertation's 300 m: localize hands over from a GNSS fix that was
     // good until it was lost, so the start is known to metres; 300 m mostly costs mean error.
+    // --profile dissertation takes the text's 300 m unless --init-radius-m is given.
     double init_radius_m = 50, reinit_radius_m = 300, heading_sd_deg = NAN, start_heading_deg = NAN;
     std::string start, start_latlon;  // "X,Y" map px / "LAT,LON" degrees, checked at parse time
     double start_from_gps_m = 0;      // > 0: start at the first row's GPS fix within this radius (replaces --init-radius-m)
@@ -53,7 +57,7 @@ struct LocalizeArgs {
     // --photos DIR: imported into --dataset first (import-photos), then localized from it.
     std::string photos;
     PhotoImportArgs photo;
-    bool odometry_given = false, heading_given = false, max_particles_given = false;
+    bool odometry_given = false, heading_given = false;
     std::string photo_options_given;  // the first import option given (they need --photos)
 };
 
@@ -99,7 +103,7 @@ bool georeferenced_map_file(const std::string& map) {
 // `--photos DIR`, before anything is read: photos carry no odometry and no compass, so visual
 // odometry and --heading none (anything else is refused by name), and the first GPS fix is the
 // start when the map can place it.
-void apply_photo_defaults(LocalizeArgs& a) {
+void apply_photo_defaults(LocalizeArgs& a, double init_radius_m) {
     if (a.odometry_given && a.odometry != "visual")
         throw Error("--odometry " + a.odometry + ": photos carry no recorded odometry; with --photos the odometry is visual");
     if (a.heading_given && a.heading.heading != "none")
@@ -111,8 +115,8 @@ void apply_photo_defaults(LocalizeArgs& a) {
     if (a.photo.map_origin.empty() && !georeferenced_map_file(a.inputs.map))
         throw Error("--photos: give --start X,Y (the first photo's map pixel), or a georeferenced map (a GeoTIFF, or --map-origin "
                     "LAT,LON) so that the first photo's GPS fix is the start");
-    a.start_from_gps_m = a.init_radius_m;
-    std::cerr << "trnkit: note: --photos: starting within --init-radius-m " << a.init_radius_m << " m of the first photo's GPS fix\n";
+    a.start_from_gps_m = init_radius_m;
+    std::cerr << "trnkit: note: --photos: starting within --init-radius-m " << init_radius_m << " m of the first photo's GPS fix\n";
 }
 
 // The import into --dataset (an import-photos folder: replaced whole or not at all; its localize/
@@ -138,11 +142,20 @@ void localize(LocalizeArgs a) {
     if (starts.size() > 1)
         throw Error(starts[0] + (starts.size() == 3 ? ", " + starts[1] + " and " + starts[2] : " and " + starts[1]) + ": give one of them, not " +
                     (starts.size() == 3 ? "all three" : "both"));
-    if (!a.photos.empty()) apply_photo_defaults(a);
-    if (a.heading.heading == "none" && std::isnan(a.heading.start_yaw_deg) && !a.max_particles_given)
-        a.max_particles = std::max(a.max_particles, kCompasslessUniformMaxParticles);
-    if (a.min_particles > a.max_particles)
-        throw Error("--min-particles " + std::to_string(a.min_particles) + " exceeds --max-particles " + std::to_string(a.max_particles));
+    check_filter_model_options(a.model);
+    // The profile first, then every option that was given on top of it.
+    filter::FilterConfig profile = filter::profile_config(filter::parse_profile(a.model.profile));
+    const bool dissertation = a.model.profile == "dissertation";
+    if (a.particles_given->count() || !dissertation) profile.fixed_particles = a.particles;
+    if (a.min_given->count() || !dissertation) profile.min_particles = a.min_particles;
+    if (a.max_given->count() || !dissertation) profile.max_particles = a.max_particles;
+    if (a.init_radius_given->count() || !dissertation) profile.init_radius_m = a.init_radius_m;
+    if (!a.photos.empty()) apply_photo_defaults(a, profile.init_radius_m);
+    if (a.heading.heading == "none" && std::isnan(a.heading.start_yaw_deg) && !a.max_given->count() && !dissertation)
+        profile.max_particles = std::max(profile.max_particles, kCompasslessUniformMaxParticles);
+    if (profile.min_particles > profile.max_particles)
+        throw Error("--min-particles " + std::to_string(profile.min_particles) + " exceeds --max-particles " + std::to_string(profile.max_particles) +
+                    (dissertation ? " (--profile dissertation)" : ""));
     if (!a.photos.empty()) {
         // Both folders before the import: the one it replaces, and the report's.
         io::check_output_folder(a.inputs.dataset, "import-photos", a.force, "--dataset");
@@ -201,16 +214,14 @@ void localize(LocalizeArgs a) {
     lc.scoring.template_width = a.template_width;
     if (a.sparse < 1) lc.scoring.sampling = Sampling::random(a.sparse, a.seed);
     filter::FilterConfig& cfg = lc.filter;
+    cfg = profile;
     cfg.metres_per_pixel = mpp;
     cfg.sampling = filter::parse_sampling_method(a.sampling);
     cfg.conversion = filter::Conversion::parse(a.conversion);
-    cfg.fixed_particles = a.particles;
-    cfg.min_particles = a.min_particles;
-    cfg.max_particles = a.max_particles;
     cfg.seed = a.seed;
-    cfg.init_radius_m = a.start_from_gps_m > 0 ? a.start_from_gps_m : a.init_radius_m;
+    if (a.start_from_gps_m > 0) cfg.init_radius_m = a.start_from_gps_m;
     cfg.reinit_radius_m = a.reinit_radius_m;
-    cfg.init_heading_sd_deg = a.heading_sd_deg;
+    if (!std::isnan(a.heading_sd_deg) || !dissertation) cfg.init_heading_sd_deg = a.heading_sd_deg;
     apply_filter_model_options(a.model, cfg);
     lc.start_x = start_x, lc.start_y = start_y;
     lc.start_heading_rad = a.start_heading_deg * kDeg;
@@ -231,7 +242,7 @@ void localize(LocalizeArgs a) {
     localize::ReportOptions report;
     report.owner = "localize", report.folder_name = "--out", report.force = a.force, report.plots = !a.no_plots, report.plot_title = in.scenario;
     report.odometry = a.odometry;
-    report.strings = {{"backend_requested", a.backend}, {"dataset", dataset}, {"map", in.map_path},
+    report.strings = {{"profile", a.model.profile}, {"backend_requested", a.backend}, {"dataset", dataset}, {"map", in.map_path},
                       {"start", a.start.empty() && a.start_latlon.empty() && !(a.start_from_gps_m > 0) ? "first row's MapX,MapY" : start_text},
                       {"start_heading", compassless ? "--heading none: yaw prior " + describe_yaw_prior(a.heading)
                                         : std::isnan(a.start_heading_deg) ? "first magnetometer reading" : "--start-heading-deg"},
@@ -240,8 +251,8 @@ void localize(LocalizeArgs a) {
                       {"photos", a.photos.empty() ? "none" : a.photos + " (imported into the dataset first)"},
                       {"map_no_data", map.valid.width > 0 ? "masked (alpha, GeoTIFF mask or --nodata)" : "none"}};
     report.numbers = {{"init_radius_m", cfg.init_radius_m}, {"reinit_radius_m", cfg.reinit_radius_m},
-                      {"start_x", result.run.start_x}, {"start_y", result.run.start_y}, {"particles", static_cast<double>(a.particles)},
-                      {"min_particles", static_cast<double>(a.min_particles)}, {"max_particles", static_cast<double>(a.max_particles)},
+                      {"start_x", result.run.start_x}, {"start_y", result.run.start_y}, {"particles", static_cast<double>(cfg.fixed_particles)},
+                      {"min_particles", static_cast<double>(cfg.min_particles)}, {"max_particles", static_cast<double>(cfg.max_particles)},
                       {"rate_hz", a.rate_hz}, {"sparse", a.sparse}, {"metres_per_pixel", mpp},
                       {"start_heading_deg", a.start_heading_deg}, {"heading_sd_deg", cfg.init_heading_sd_deg},
                       {"camera_hfov_deg", in.camera.hfov_deg}, {"max_tilt_deg", a.max_tilt_deg},
@@ -304,12 +315,14 @@ void add_localize_command(CLI::App& app) {
     cmd->add_option("--conversion", a->conversion, "linear, softmax, rectifying:D or logistic:V")->capture_default_str();
     cmd->add_option("--sampling", a->sampling, "kld, importance or rejection")->capture_default_str();
     cmd->add_option("--seed", a->seed, "Random seed (a fixed seed reproduces a run exactly)")->capture_default_str()->transform(any_seed());
-    cmd->add_option("--particles", a->particles, "Particle count for importance / rejection sampling")
+    a->particles_given = cmd->add_option("--particles", a->particles, "Particle count for importance / rejection sampling (--profile dissertation: 500)")
         ->capture_default_str()
         ->transform(whole_in(1, kMaxParticles));
-    cmd->add_option("--min-particles", a->min_particles, "KLD sampling: fewest particles")->capture_default_str()->transform(whole_in(1, kMaxParticles));
-    cmd->add_option("--max-particles", a->max_particles,
-                    "KLD sampling: most particles (and the initial set); default 6000 with --heading none and a uniform yaw prior")
+    a->min_given = cmd->add_option("--min-particles", a->min_particles, "KLD sampling: fewest particles")->capture_default_str()->transform(whole_in(1, kMaxParticles));
+    a->max_given = cmd->add_option("--max-particles", a->max_particles,
+                                   "KLD sampling: most particles (and, with --profile ours, the initial set; 6000 with --heading none and a uniform "
+                                   "yaw prior; dissertation: " + std::to_string(filter::kDissertationMaxParticles) +
+                                       ", a safety cap, and a 500-particle initial set)")
         ->capture_default_str()
         ->transform(whole_in(1, kMaxParticles));
     cmd->add_option("--rate", a->rate_hz, "Filter rate in Hz (every fps/rate-th frame is used)")->capture_default_str()->check(real_in(0, 1000, Open::low));
@@ -318,9 +331,9 @@ void add_localize_command(CLI::App& app) {
         ->transform(template_width_option());
     cmd->add_option("--sparse", a->sparse, "Share of template pixels scored (1 = dense)")->capture_default_str()->check(real_in(1e-4, 1.0));
     cmd->add_option("--out", a->out, "Output folder (default: DATASET/localize)");
-    cmd->add_option("--init-radius-m", a->init_radius_m,
+    a->init_radius_given = cmd->add_option("--init-radius-m", a->init_radius_m,
                     "Particles start uniform within this radius (m) of the start; 50 m suits a handover after GNSS loss, "
-                    "where the last fix is good to metres (the dissertation's 300 m assumes no fix)")
+                    "where the last fix is good to metres (the dissertation's 300 m assumes no fix; --profile dissertation takes it)")
         ->capture_default_str()
         ->check(real_in(0, 1e5, Open::low));
     cmd->add_option("--reinit-radius-m", a->reinit_radius_m, "Radius (m) of the re-initialisation around the last estimate when every weight collapses")
@@ -336,7 +349,7 @@ void add_localize_command(CLI::App& app) {
         ->check(real_in(0, 1e5, Open::low));
     cmd->add_option("--start-heading-deg", a->start_heading_deg, "Initial heading prior, degrees clockwise from north (default: the first magnetometer reading; with --heading none: --start-yaw-deg)")
         ->check(real_in(-360, 360));
-    cmd->add_option("--heading-sd-deg", a->heading_sd_deg, "Spread (sd, degrees) of the initial headings (default: --motion-eps-rot)")
+    cmd->add_option("--heading-sd-deg", a->heading_sd_deg, "Spread (sd, degrees) of the initial headings (default: --motion-eps-rot; --profile dissertation: a third of it, one sample_normal)")
         ->check(real_in(0, 360));
     cmd->add_flag("--no-plots", a->no_plots, "Skip the gnuplot step");
     cmd->add_flag("--force", a->force, "Write into a non-empty folder that is not an earlier output of localize");
@@ -346,7 +359,6 @@ void add_localize_command(CLI::App& app) {
     add_heading_options(*cmd, a->heading);
     cmd->callback([a, cmd] {
         a->odometry_given = cmd->count("--odometry") > 0, a->heading_given = cmd->count("--heading") > 0;
-        a->max_particles_given = cmd->count("--max-particles") > 0;
         for (const char* o : {"--altitude-agl", "--sensor-width-mm", "--ignore-orientation", "--map-origin"})
             if (cmd->count(o) > 0 && a->photo_options_given.empty()) a->photo_options_given = o;
         localize(*a);

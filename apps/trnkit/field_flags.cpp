@@ -7,7 +7,7 @@ namespace trn::cli {
 namespace {
 
 // One table for every command: a field has one flag wherever it appears.
-constexpr std::array<std::pair<const char*, const char*>, 37> kFlags{{
+constexpr std::array<std::pair<const char*, const char*>, 41> kFlags{{
     {"dataset", "--dataset"},
     {"flight.folder", "--dataset"},
     {"map", "--map"},
@@ -49,6 +49,10 @@ constexpr std::array<std::pair<const char*, const char*>, 37> kFlags{{
     {"backend", "--backend"},
     {"list_jobs", "--list-jobs"},
     {"out", "--out"},
+    {"profile", "--profile"},
+    {"lock_monitor", "--lock-monitor"},
+    {"results", "--results"},
+    {"resume", "--resume"},
 }};
 
 }  // namespace

@@ -7,8 +7,11 @@
 #include <iostream>
 #include <set>
 
+#include "flight_settings.hpp"
+#include "results_store.hpp"
 #include "study.hpp"
 #include "world.hpp"
+#include "trn/build_info.hpp"
 #include "trn/error.hpp"
 #include "trn/parse_number.hpp"
 #include "trn/experiments/experiment.hpp"
@@ -92,7 +95,12 @@ std::string command_prefix(const ExperimentOptions& o, const std::string& out) {
         std::snprintf(text, sizeof text, " --init-radius-m %.17g", o.init_radius_m);  // reads back as the same double
         radius = text;
     }
-    return "trnkit experiment " + o.study + (o.quick ? " --quick" : "") + " --seed " + std::to_string(o.seed) + radius + " --backend " +
+    std::string profile;
+    if (o.profile != "ours") profile += " --profile " + shell_word(o.profile);
+    if (!o.lock_monitor.empty()) profile += " --lock-monitor " + shell_word(o.lock_monitor);
+    if (!o.results.empty()) profile += " --results " + shell_word(o.results);
+    if (o.resume) profile += " --resume";
+    return "trnkit experiment " + o.study + (o.quick ? " --quick" : "") + " --seed " + std::to_string(o.seed) + radius + profile + " --backend " +
            shell_word(o.backend) + " --out " + shell_word(out);
 }
 
@@ -129,6 +137,23 @@ std::size_t run_experiment(const ExperimentOptions& o) {
     config["quick"] = o.quick;
     config["seed"] = o.seed;
     config["backend"] = o.backend;
+    // The filter's profile and lock monitor are part of the configuration (jobs of another are refused, not mixed).
+    const filter::Profile profile = [&] {
+        try {
+            return filter::parse_profile(o.profile);
+        } catch (const Error&) {
+            throw Error("experiment: `profile` '" + io::quote_input(o.profile) + "': unknown; expected ours or dissertation");
+        }
+    }();
+    config["profile"] = filter::to_string(profile);
+    if (!o.lock_monitor.empty() && o.lock_monitor != "on" && o.lock_monitor != "off")
+        throw Error("experiment: `lock_monitor` '" + io::quote_input(o.lock_monitor) + "': expected on or off");
+    if (config.contains("filter")) {  // the studies that run the filter
+        if (profile == filter::Profile::Dissertation) config["filter"] = kDissertationFilter;
+        config["lock_monitor"] = o.lock_monitor.empty() ? filter::profile_config(profile).lock.enabled : o.lock_monitor == "on";
+    } else if (!o.lock_monitor.empty()) {
+        throw Error("experiment " + o.study + ": `lock_monitor`: this study runs no particle filter (it scores poses only)");
+    }
     if (!std::isnan(o.init_radius_m)) {  // part of the configuration: jobs of another radius are refused, not mixed
         if (!config.contains("init_radius_m"))
             throw Error("experiment " + o.study + ": `init_radius_m`: this study has no start radius (only conversion, robustness, odometry, odometry-wind)");
@@ -141,10 +166,20 @@ std::size_t run_experiment(const ExperimentOptions& o) {
     for (const Json& j : jobs)
         if (!ids.insert(j.at("id").get<std::string>()).second) throw Error("experiment: duplicate job id " + j.at("id").dump());
 
-    const std::string out = o.out.empty() ? "experiments/" + o.study + (o.quick ? "-quick" : "") : o.out;
+    const std::string out = o.out.empty() ? "experiments/" + o.study + (profile == filter::Profile::Dissertation ? "-dissertation" : "") +
+                                                (o.quick ? "-quick" : "")
+                                          : o.out;
+    // The results store: read always (appends skip the jobs it holds), used to skip and merge with --resume.
+    ResultsStore store(o.results == "none" ? std::string() : o.results.empty() ? default_results_path(o.study, config["profile"], o.quick) : o.results,
+                       config);
+    if (o.resume && !store.enabled()) throw Error("experiment: `resume` needs the results store (not `results` none)");
+    const std::string store_note = store.load();
+    if (o.resume && !store_note.empty() && !o.list_jobs) std::cerr << "experiment " << o.study << ": note: " << store_note << "\n";
     if (o.list_jobs && o.list_ids_only) {  // for scripts: each line is one --job argument, never shell text
-        for (const Json& j : jobs) std::cout << j.at("id").get<std::string>() << "\n";
-        return jobs.size();
+        std::size_t listed = 0;
+        for (const Json& j : jobs)
+            if (!(o.resume && store.has(j.at("id").get<std::string>()))) std::cout << j.at("id").get<std::string>() << "\n", ++listed;
+        return listed;
     }
     if (o.list_jobs) {
         for (const Json& j : jobs) std::cout << command_prefix(o, out) << " --job " << shell_word(j.at("id").get<std::string>()) << " --no-merge\n";
@@ -162,7 +197,9 @@ std::size_t run_experiment(const ExperimentOptions& o) {
     if (ec) throw Error(jobs_dir + ": cannot create folder (" + ec.message() + ")");
     auto job_path = [&](const Json& j) { return jobs_dir + "/" + j.at("id").get<std::string>() + ".json"; };
     // A finished job is reused only when it was made with exactly this configuration.
+    auto in_store = [&](const Json& j) { return o.resume && store.has(j.at("id").get<std::string>()); };
     auto finished = [&](const Json& j) {
+        if (in_store(j)) return true;
         const std::string path = job_path(j);
         if (!fs::exists(path)) return false;
         const Json done = read_json(path);
@@ -195,6 +232,8 @@ std::size_t run_experiment(const ExperimentOptions& o) {
                 Json job{{"config", config}, {"params", params}, {"result", result}, {"wall_s", wall}, {"backend_device", backend->info().device}};
                 io::add_provenance(job);
                 write_json(job_path(params), job);
+                if (!store.has(params.at("id").get<std::string>()))
+                    store.append(params, result, wall, backend->info().device, std::string(build_info().git_commit));
             }
             if (o.progress) progress_bar(todo.size(), todo.size(), "done");
         }
@@ -202,7 +241,7 @@ std::size_t run_experiment(const ExperimentOptions& o) {
     if (o.no_merge) return 0;
 
     std::vector<Json> outputs;
-    std::size_t missing = 0;
+    std::size_t missing = 0, from_store = 0;
     double wall_s = 0;
     std::set<std::string> devices;
     for (const Json& j : jobs) {
@@ -210,7 +249,13 @@ std::size_t run_experiment(const ExperimentOptions& o) {
             ++missing;
             continue;
         }
-        outputs.push_back(read_json(job_path(j)));
+        const std::string id = j.at("id").get<std::string>();
+        if (in_store(j)) {
+            outputs.push_back(store.output(id));
+            ++from_store;
+        } else {
+            outputs.push_back(read_json(job_path(j)));
+        }
         wall_s += outputs.back().value("wall_s", 0.0);
         devices.insert(outputs.back().value("backend_device", std::string("?")));
     }
@@ -223,8 +268,16 @@ std::size_t run_experiment(const ExperimentOptions& o) {
     if (missing)
         markdown = "**PARTIAL RUN: " + std::to_string(outputs.size()) + " of " + std::to_string(jobs.size()) +
                    " jobs finished; cells are means over the finished jobs only.**\n\n" + markdown;
+    {
+        std::string head = "Profile: " + config["profile"].get<std::string>();
+        if (config.contains("lock_monitor")) head += std::string(", lock monitor ") + (config["lock_monitor"].get<bool>() ? "on" : "off");
+        head += "; " + std::to_string(outputs.size()) + " of " + std::to_string(jobs.size()) + " jobs";
+        if (from_store) head += " (" + std::to_string(from_store) + " from the results store " + store.path() + ", configuration " + store.hash() + ")";
+        markdown = head + ".\n\n" + markdown;
+    }
     io::write_file_atomic(out + "/results.md", markdown);
-    Json prov{{"study", o.study}, {"seed", o.seed}, {"backend", o.backend},
+    Json prov{{"study", o.study}, {"profile", config["profile"]}, {"seed", o.seed}, {"backend", o.backend},
+              {"results_store", store.path()}, {"config_hash", store.hash()}, {"jobs_from_store", from_store},
               {"backend_devices", devices}, {"jobs", jobs.size()}, {"jobs_merged", outputs.size()}, {"job_wall_s_total", wall_s}, {"config", config}};
     io::add_provenance(prov);
     write_json(out + "/provenance.json", prov);

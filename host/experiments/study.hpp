@@ -9,10 +9,20 @@
 #include <nlohmann/json.hpp>
 
 #include "trn/backend.hpp"
+#include "trn/filter/particle_filter.hpp"
 
 namespace trn::experiments {
 
 using Json = nlohmann::ordered_json;
+
+// The filter a study's jobs start from: the configuration's profile ("profile": ours or
+// dissertation, filter::profile_config; ours when absent) with its "lock_monitor" (true / false)
+// when it has one. Each study then sets what it varies (conversion, sampling, seed, radius).
+inline filter::FilterConfig study_filter(const Json& config) {
+    filter::FilterConfig f = filter::profile_config(filter::parse_profile(config.value("profile", std::string("ours"))));
+    if (config.contains("lock_monitor")) f.lock.enabled = config.at("lock_monitor").get<bool>();
+    return f;
+}
 
 // What a job may use while it runs.
 struct JobContext {

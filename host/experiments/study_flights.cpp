@@ -67,6 +67,7 @@ Json fly(const Json& c, const std::string& preset_name, const std::string& conve
     spec.rate_hz = c.at("rate_hz").get<double>();
     spec.localizer.scoring.template_width = c.at("template_width");
     filter::FilterConfig& cfg = spec.localizer.filter;
+    cfg = study_filter(c);
     cfg.metres_per_pixel = map->metres_per_pixel;
     cfg.conversion = filter::Conversion::parse(conversion);
     cfg.seed = mix_seed(ctx.seed, 200 + run);

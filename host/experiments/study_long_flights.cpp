@@ -65,6 +65,7 @@ Json fly(const Json& c, const std::string& preset_name, double distance_m, int t
     spec.rate_hz = c.at("rate_hz").get<double>();
     spec.localizer.scoring.template_width = template_width;
     filter::FilterConfig& cfg = spec.localizer.filter;
+    cfg = study_filter(c);
     cfg.metres_per_pixel = map->metres_per_pixel;
     cfg.conversion = filter::Conversion::parse(c.at("conversion").get<std::string>());
     cfg.init_radius_m = c.at("init_radius_m");

@@ -58,10 +58,16 @@ public:
         localize::LocalizerConfig lc;
         lc.scoring.template_width = c.at("template_width");
         filter::FilterConfig& fc = lc.filter;
+        fc = study_filter(c);
         fc.metres_per_pixel = mpp;
         fc.sampling = filter::parse_sampling_method(p.at("method").get<std::string>());
         fc.fixed_particles = c.at("particles");
-        fc.max_particles = c.at("particles");
+        // Ours caps KLD at the fixed count (also its initial set); the dissertation profile starts
+        // from it and has no maximum but its safety cap.
+        if (c.value("profile", std::string("ours")) == "dissertation")
+            fc.initial_particles = c.at("particles");
+        else
+            fc.max_particles = c.at("particles");
         fc.init_radius_m = fc.reinit_radius_m = c.at("search_radius_m");
         fc.seed = mix_seed(ctx.seed, 6000 + start);
         lc.start_x = x, lc.start_y = y, lc.start_heading_rad = heading;

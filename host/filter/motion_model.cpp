@@ -20,6 +20,10 @@ void MotionModel::validate() const {
     in_range(yaw_sd_deg, 0, 180, "yaw_sd_deg");
     in_range(yaw_turn_sd, 0, 5, "yaw_turn_sd");
     in_range(yaw_unknown_sd_deg, 0, 180, "yaw_unknown_sd_deg");
+    if (equations != MotionEquations::Ours && equations != MotionEquations::Dissertation)
+        throw Error("motion model: equations must be Ours or Dissertation");
+    if (equations == MotionEquations::Dissertation && along_heading)
+        throw Error("motion model: along_heading is an option of our equations; the dissertation's move along the heading anyway");
 }
 
 StepMotion make_step_motion(double east_m, double north_m, double heading_rad, double frame_heading_rad, double turn_rad,
@@ -30,6 +34,7 @@ StepMotion make_step_motion(double east_m, double north_m, double heading_rad, d
     m.have_heading = std::isfinite(heading_rad);
     m.heading_rad = m.have_heading ? heading_rad : 0;
     m.turn_rad = std::isfinite(turn_rad) ? std::abs(turn_rad) : 0;
+    m.heading_change_rad = std::isfinite(turn_rad) ? turn_rad : 0;
     if (std::isfinite(frame_heading_rad) && m.distance_px > 0) {
         // Forward / right of the heading (compass: forward = (sin, cos) in east/north).
         const double s = std::sin(frame_heading_rad), c = std::cos(frame_heading_rad);
@@ -61,8 +66,23 @@ void translate(const MotionModel& model, const StepMotion& m, double mpp, const 
 }
 }  // namespace
 
+namespace {
+// Eqs. 2.7-2.11 as printed (motion_model.hpp): z[0] the rotation's draw, z[1] the translation's.
+void propagate_as_printed(const MotionModel& model, const StepMotion& m, double mpp, const std::array<double, 5>& z, double& x,
+                          double& y, double& yaw) {
+    constexpr double kSampleNormalSd = 1.0 / 3.0;  // the paper: sample_normal(eps) = eps * N(0, 1/3)
+    const double rotation = m.yaw_state ? (std::isfinite(m.rotation_rad) ? m.rotation_rad : 0.0) : m.heading_change_rad;
+    const double d_rot = rotation + model.eps_rot_deg * kDeg * kSampleNormalSd * z[0];
+    const double d_tran = m.distance_px + model.eps_tran_m / mpp * m.noise_gain * kSampleNormalSd * z[1];
+    yaw = wrap_angle(yaw + model.alpha3 * d_rot);
+    x += model.alpha1 * d_tran * std::sin(yaw);
+    y -= model.alpha2 * d_tran * std::cos(yaw);
+}
+}  // namespace
+
 void propagate_particle(const MotionModel& model, const StepMotion& m, double mpp, const std::array<double, 5>& z, double& x,
                         double& y, double& yaw) {
+    if (model.equations == MotionEquations::Dissertation) return propagate_as_printed(model, m, mpp, z, x, y, yaw);
     if (m.yaw_state) {  // moved along the yaw it had, then turned by the odometry's rotation
         translate(model, m, mpp, z, yaw, x, y);
         const bool known = std::isfinite(m.rotation_rad);

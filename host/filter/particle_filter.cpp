@@ -32,6 +32,35 @@ HeadingMode parse_heading_mode(std::string_view text) {
 
 const char* to_string(HeadingMode m) { return m == HeadingMode::None ? "none" : "compass"; }
 
+Profile parse_profile(std::string_view text) {
+    if (text == "ours") return Profile::Ours;
+    if (text == "dissertation") return Profile::Dissertation;
+    throw Error("profile '" + std::string(text) + "': unknown; expected ours or dissertation");
+}
+
+const char* to_string(Profile p) { return p == Profile::Dissertation ? "dissertation" : "ours"; }
+
+FilterConfig dissertation_profile() {
+    FilterConfig c;  // particle_filter.hpp says where each value comes from
+    c.kld_epsilon = 0.05;
+    c.kld_upper_quantile = 1 - 0.9;  // z_(1-delta), delta = 0.9: -1.28
+    c.kld_bin_m = 5;
+    c.min_particles = 100;
+    c.max_particles = kDissertationMaxParticles;
+    c.initial_particles = 500;
+    c.fixed_particles = 500;
+    c.init_radius_m = 300;
+    c.lock.enabled = false;
+    c.motion.equations = MotionEquations::Dissertation;
+    c.motion.alpha1 = c.motion.alpha2 = c.motion.alpha3 = 1;
+    c.motion.eps_tran_m = 3;
+    c.motion.eps_rot_deg = 6;
+    c.init_heading_sd_deg = c.motion.eps_rot_deg / 3;
+    return c;
+}
+
+FilterConfig profile_config(Profile p) { return p == Profile::Dissertation ? dissertation_profile() : FilterConfig{}; }
+
 void FilterConfig::validate() const {
     auto positive = [](double v, const char* name) {
         if (!(v > 0) || !std::isfinite(v)) throw Error(std::string("filter config: ") + name + " must be > 0");
@@ -51,6 +80,8 @@ void FilterConfig::validate() const {
     if (min_particles < 1) throw Error("filter config: min_particles must be >= 1");
     if (max_particles < min_particles) throw Error("filter config: max_particles must be >= min_particles");
     if (fixed_particles < 1) throw Error("filter config: fixed_particles must be >= 1");
+    limits::check_count("filter config: initial_particles", static_cast<std::int64_t>(std::min<std::size_t>(initial_particles, INT64_MAX)),
+                        limits::kMaxParticles, limits::kParticleBytes);
     limits::check_count("filter config: max_particles", static_cast<std::int64_t>(std::min<std::size_t>(max_particles, INT64_MAX)),
                         limits::kMaxParticles, limits::kParticleBytes);
     limits::check_count("filter config: fixed_particles", static_cast<std::int64_t>(std::min<std::size_t>(fixed_particles, INT64_MAX)),
@@ -92,7 +123,9 @@ void ParticleFilter::scatter_yaw_state(double x, double y, double yaw, double ya
 
 void ParticleFilter::initialise(double x, double y, double heading_rad) {
     if (!std::isfinite(x) || !std::isfinite(y)) throw Error("ParticleFilter::initialise: position must be finite");
-    const std::size_t n = config_.sampling == SamplingMethod::Kld ? config_.max_particles : config_.fixed_particles;
+    const std::size_t n = config_.initial_particles > 0                  ? config_.initial_particles
+                          : config_.sampling == SamplingMethod::Kld ? config_.max_particles
+                                                                    : config_.fixed_particles;
     scatter(x, y, heading_rad, std::isfinite(heading_rad), config_.init_radius_m, n, 0, config_.init_heading_sd_deg);
     last_east_ = last_north_ = 0;
     last_heading_ = heading_rad;

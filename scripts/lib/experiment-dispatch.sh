@@ -20,18 +20,26 @@ find_trnkit() {
   fi
 }
 
-# Sets study, out (absolute) and experiment_options (the options with --out made absolute, so jobs
-# that run in another folder or on another host write to the same place) from "NAME [options]".
+# Sets study, out (absolute), results (the results store, absolute), resume (--resume given) and
+# experiment_options (the options with --out and --results made absolute, so jobs that run in
+# another folder or on another host write to the same place) from "NAME [options]". Without
+# --results the store is trnkit's default, results/NAME/PROFILE[-quick].jsonl, under this folder.
 parse_study_arguments() {
   [[ $# -ge 1 && $1 != -* ]] || die "give the study name, then trnkit experiment options (--out DIR is required)"
   study=$1
   shift
-  out=""
+  out="" results="" resume="" profile=ours quick=""
   experiment_options=()
   while [[ $# -gt 0 ]]; do
     case $1 in
       --out) [[ $# -ge 2 ]] || die "--out needs a folder"; out=$2; shift 2; continue ;;
       --out=*) out=${1#--out=}; shift; continue ;;
+      --results) [[ $# -ge 2 ]] || die "--results needs a file (or none)"; results=$2; shift 2; continue ;;
+      --results=*) results=${1#--results=}; shift; continue ;;
+      --resume) resume=1 ;;
+      --quick) quick=-quick ;;
+      --profile) [[ $# -ge 2 ]] || die "--profile needs ours or dissertation"; profile=$2 ;;
+      --profile=*) profile=${1#--profile=} ;;
       --job | --job=* | --list-jobs | --list-jobs=* | --merge | --no-merge | --shard | --shard=* | --prepare)
         die "$1: set by this script (it runs every job by id, then the merge)" ;;
     esac
@@ -41,18 +49,26 @@ parse_study_arguments() {
   [[ -n $out ]] || die "--out DIR is required (one folder every job writes into; shared by all hosts)"
   out=$(realpath -m -- "$out")
   experiment_options+=(--out "$out")
+  [[ -n $results ]] || results=results/$study/$profile$quick.jsonl
+  [[ $results == none ]] || results=$(realpath -m -- "$results")
+  experiment_options+=(--results "$results")
 }
 
-# Sets job_ids (from trnkit itself), then creates and marks the output folder and checks finished
+# Sets job_ids (from trnkit itself; with --resume only the jobs the results store does not hold), then creates and marks the output folder and checks finished
 # jobs against these options, so jobs started at once find it ready; the dispatcher's own files go
 # to $out/dispatch/ (created after the folder is marked, so trnkit owns it).
 list_and_prepare() {
   local ids_text
   ids_text=$("$trnkit" experiment "$study" "${experiment_options[@]}" --list-jobs=ids) ||
     die "trnkit experiment $study refused the options (see above)"
-  [[ -n $ids_text ]] || die "$study: the job list is empty"
   # shellcheck disable=SC2034  # job_ids and dispatch_dir are for the scripts that source this file
-  mapfile -t job_ids <<<"$ids_text"
+  job_ids=()
+  if [[ -n $ids_text ]]; then
+    # shellcheck disable=SC2034
+    mapfile -t job_ids <<<"$ids_text"
+  elif [[ -z $resume ]]; then
+    die "$study: the job list is empty"
+  fi
   "$trnkit" experiment "$study" "${experiment_options[@]}" --prepare || die "cannot prepare $out (see above)"
   dispatch_dir=$out/dispatch
   mkdir -p -- "$dispatch_dir"

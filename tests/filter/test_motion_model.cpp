@@ -50,9 +50,10 @@ TEST(MotionModel, NoiseFreeParticleAtTheTrueHeadingFollowsACrabbingTrackExactly)
     EXPECT_LT(noise_free_error(false, 0.5), 1e-9);
 }
 
-TEST(MotionModel, TheLiteralAlongHeadingModelDoesNotFollowTheCrab) {
-    // The dissertation's literal reading moves the distance along the heading: 240 m of track
-    // with a 15-35 degree crab leaves it ~100 m off.
+TEST(MotionModel, TheAlongHeadingModelDoesNotFollowTheCrab) {
+    // Our model without its crab offset (--motion-along-heading) moves the distance along the
+    // heading, as the dissertation's equations also do: 240 m of track with a 15-35 degree crab
+    // leaves it ~100 m off.
     EXPECT_GT(noise_free_error(true, 1.0), 40.0);
 }
 

@@ -73,10 +73,10 @@ TEST(ParticleFilter, TracksACrabbingClimbingFlightBetterThanOdometry) {
     ASSERT_EQ(r.rows.size(), 100u);
     EXPECT_LT(r.summary.filter_mean_error_m, 0.5 * r.summary.odometry_mean_error_m);
     EXPECT_LT(r.rows.back().error_m, 10.0);
-    // The literal model (distance along the heading) is pulled off the track by the crab.
-    FilterConfig literal = small_config();
-    literal.motion.along_heading = true;
-    const LocalizationResult l = run_flight(literal, flight);
+    // Without the crab offset (distance along the heading, --motion-along-heading) it is pulled off the track.
+    FilterConfig along = small_config();
+    along.motion.along_heading = true;
+    const LocalizationResult l = run_flight(along, flight);
     EXPECT_LT(r.summary.filter_mean_error_m, l.summary.filter_mean_error_m);
 }
 

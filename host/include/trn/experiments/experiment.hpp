@@ -1,7 +1,10 @@
 #pragma once
 // `trnkit experiment NAME`: reproduces one of the dissertation's studies (metrics, heading,
-// sampling, conversion, robustness, odometry; odometry-wind on the -wind presets). Every study is split into independent jobs; each
-// job writes one JSON into the output folder (finished jobs are skipped, so runs resume), and
+// sampling, conversion, robustness, odometry; odometry-wind on the -wind presets) under a filter
+// profile (ours or dissertation). Every study is split into independent jobs; each
+// job writes one JSON into the output folder (finished jobs are skipped, so runs resume) and
+// appends one line to the results store, results/<study>/<profile>.jsonl (kept in the repository;
+// --resume skips what it holds and merges from it), and
 // `merge` turns the job outputs into Markdown + CSV tables with the dissertation's numbers in
 // adjacent columns, gnuplot plots and a provenance JSON. A merge refuses job outputs whose
 // configuration differs from the one asked for.
@@ -26,6 +29,12 @@ struct ExperimentOptions {
     std::string shard = "1/1";   // run jobs i, i+n, i+2n ... (1-based i)
     std::string job;             // run only the job with this id (what --list-jobs prints)
     std::uint64_t seed = 1;
+    std::string profile = "ours";  // the filter's settings: ours or dissertation (filter::Profile)
+    std::string lock_monitor;      // "on", "off"; "": the profile's (ours on, dissertation off)
+    // The results store: one JSON line per finished job (results_store.hpp), default
+    // results/<study>/<profile>[-quick].jsonl; "none": not written.
+    std::string results;
+    bool resume = false;         // skip the jobs the store holds for this configuration; merge from it too
     double init_radius_m = NAN;  // flight studies: particles start within this radius (m); NaN: the study's 300 m
     bool quick = false;          // reduced but meaningful version (CI)
     bool list_jobs = false;      // print one command per job and exit

@@ -12,8 +12,25 @@
 //     c      = theta' + delta_c + (alpha2 + alpha3 * |turn|) * N(0,1)  (course, across track)
 //     x'     = x + d sin(c) + N(0, eps_tran),  y' = y - d cos(c) + N(0, eps_tran)   (eqs. 2.7, 2.8)
 // (compass convention: x east, y south). A particle at the true heading with no noise follows
-// the odometry's track exactly, crab or not. `along_heading` restores the literal equations
-// (delta_c = 0: the odometry's direction is dropped), for comparison.
+// the odometry's track exactly, crab or not. `along_heading` drops the crab offset (delta_c = 0:
+// the distance is moved along the measured heading, the odometry's direction is lost) and keeps
+// everything else of this model (the heading reset to the magnetometer, the alpha roles above); it
+// is not the dissertation's equations, which are `equations = MotionEquations::Dissertation`.
+//
+// MotionEquations::Dissertation: eqs. 2.7-2.11 as printed (dissertation 2.3.3; the paper's eqs. 6-8
+// and its sample_normal), in the compass convention (the text's x = cos, y = sin pair is the
+// mathematical one; here x east = sin, y south = -cos of the compass heading):
+//     d_tran = delta_tran + sample_normal(eps_tran)                         (eq. 2.10)
+//     d_rot  = delta_rot  + sample_normal(eps_rot)                          (eq. 2.11)
+//     theta' = theta + alpha3 * d_rot                                       (eq. 2.9)
+//     x'     = x + alpha1 * d_tran * sin(theta'),  y' = y - alpha2 * d_tran * cos(theta')   (eqs. 2.7, 2.8)
+// with sample_normal(eps) = eps * N(0, 1/3) (the paper), read as eps times a normal draw of sd 1/3
+// (eps is then a 3-sigma bound; the other reading, variance 1/3, would be sd 0.577). delta_tran =
+// the odometry's distance this step, delta_rot = the heading's change since the previous step (the
+// magnetometer's; without a compass the odometry's rotation, 0 when unknown). The particle keeps its
+// own heading theta (no reset to the magnetometer), moves along it (no crab offset) and the alphas
+// scale the motion (1 = as measured). eps_tran_m / eps_rot_deg are these eps; noise_gain (lost
+// odometry, not in the text) scales eps_tran. alpha2/alpha3 carry the text's roles, not ours.
 //
 // Without a compass (StepMotion::yaw_state, FilterConfig::heading = HeadingMode::None) yaw is part
 // of each particle's state. The increment is then expressed in the previous frame's own axes (as if
@@ -30,8 +47,14 @@
 TRN_API_BEGIN
 namespace trn::filter {
 
+enum class MotionEquations {
+    Ours,          // the displacement-vector model above (the default)
+    Dissertation,  // eqs. 2.7-2.11 as printed (see above)
+};
+
 struct MotionModel {
-    bool along_heading = false;
+    MotionEquations equations = MotionEquations::Ours;
+    bool along_heading = false;  // Ours only: drop the crab offset (not the dissertation's equations)
     double alpha1 = 0.05;      // along-track sd per metre moved (the odometry's scale error)
     double alpha2 = 0.03;      // course sd, radians (= across-track sd per metre moved)
     double alpha3 = 0.2;       // extra course sd per radian the heading turned this step (odometry in turns)
@@ -53,6 +76,7 @@ struct StepMotion {
     double heading_rad = 0;        // measured heading this step
     bool have_heading = false;     // false: each particle keeps its own heading
     double turn_rad = 0;           // |heading change| since the previous step
+    double heading_change_rad = 0; // the same, signed (clockwise; 0 when unknown): delta_rot of eq. 2.11
     double noise_gain = 1;         // > 1 while the odometry is lost (constant velocity)
     // Without a compass: each particle turns by rotation_rad (NaN: unknown) and moves by the
     // increment as seen from its own yaw before the turn (the increment is in the previous frame's axes).

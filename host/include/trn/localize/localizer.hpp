@@ -34,6 +34,15 @@ struct LocalizerConfig {
     void validate() const;  // throws trn::Error naming the field ("start_x", "camera_hfov_deg", ...)
 };
 
+// The presets of trnkit's --profile (filter::Profile; particle_filter.hpp says what each value of
+// the dissertation's comes from): LocalizerConfig{} with the profile's filter.
+inline LocalizerConfig localizer_profile(filter::Profile profile) {
+    LocalizerConfig c;
+    c.filter = filter::profile_config(profile);
+    return c;
+}
+inline LocalizerConfig dissertation_profile() { return localizer_profile(filter::Profile::Dissertation); }
+
 // One camera frame and what the other sensors said since the previous one.
 struct Observation {
     GrayView frame;                                       // grey, as taken; empty: no image this step
