@@ -5,6 +5,8 @@
 #   TRN_WITH_CUDA  AUTO (built when a working nvcc is found), ON (its absence fails configure), OFF
 #   TRN_CUDA_ARCHS the sm_XY to build cubins for; those this nvcc cannot target are left out, by name
 #   TRN_CUDA_PTX   the compute_XY of the embedded PTX (JIT on newer GPUs); empty: the oldest nvcc targets
+#   TRN_CUDA_HOST_COMPILER  the host compiler nvcc preprocesses the kernels with (an older toolkit may
+#                  accept only an older GCC than the C++20 one); empty: the C++ compiler when it is GCC
 #
 # Sets TRN_CUDA_FOUND, and TRN_CUDA_MISSING (why not) or TRN_NVCC, TRN_CUDA_INCLUDE_DIR,
 # TRN_CUDA_VERSION ("13.0"), TRN_CUDA_CUBINS, TRN_CUDA_PTX_ARCH, TRN_CUDA_LEFT_OUT.
@@ -13,6 +15,7 @@ set_property(CACHE TRN_WITH_CUDA PROPERTY STRINGS AUTO ON OFF)
 set(TRN_CUDA_ARCHS "53;62;72;87;90" CACHE STRING
     "GPU architectures (sm_XY numbers) for cubins: Jetson TX1/Nano 53, TX2 62, Xavier 72, Orin 87, H100/H200 90")
 set(TRN_CUDA_PTX "" CACHE STRING "compute_XY number of the embedded PTX; empty: the oldest architecture nvcc targets")
+set(TRN_CUDA_HOST_COMPILER "" CACHE FILEPATH "host compiler for nvcc (-ccbin); empty: the C++ compiler when it is GCC")
 
 set(TRN_CUDA_FOUND FALSE)
 set(TRN_CUDA_MISSING "")
@@ -83,7 +86,9 @@ if(TRN_CUDA_VERSION)
   file(MAKE_DIRECTORY "${_trn_probe_dir}")
   file(WRITE "${_trn_probe_dir}/probe.cu" "extern \"C\" __global__ void probe(int* p) { p[threadIdx.x] = 1; }\n")
   set(TRN_NVCC_HOST_FLAGS "")
-  if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
+  if(TRN_CUDA_HOST_COMPILER)
+    set(TRN_NVCC_HOST_FLAGS -ccbin "${TRN_CUDA_HOST_COMPILER}")
+  elseif(CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
     set(TRN_NVCC_HOST_FLAGS -ccbin "${CMAKE_CXX_COMPILER}")
   endif()
   execute_process(COMMAND "${TRN_NVCC}" ${TRN_NVCC_HOST_FLAGS} -fatbin -gencode arch=compute_${TRN_CUDA_PTX_ARCH},code=compute_${TRN_CUDA_PTX_ARCH}
@@ -106,6 +111,7 @@ endif()
 # trn_cuda_fatbin(<out_var> SOURCE <file.cu>): a custom command compiling SOURCE into
 # <binary dir>/<name>.fatbin (cubins for TRN_CUDA_CUBINS, PTX for TRN_CUDA_PTX_ARCH) and embedding it
 # as cuda_fatbin_<name>.cpp; <out_var> is the generated source. Exact float arithmetic: -fmad=false.
+# The kernels are C++11, so nvcc's default language level (older toolkits: C++14) is kept.
 set(_TRN_EMBED_BINARY_SCRIPT "${CMAKE_CURRENT_LIST_DIR}/embed_binary.cmake")
 function(trn_cuda_fatbin out_var)
   cmake_parse_arguments(ARG "" "SOURCE" "" ${ARGN})
@@ -123,7 +129,7 @@ function(trn_cuda_fatbin out_var)
   set(out "${CMAKE_CURRENT_BINARY_DIR}/cuda_fatbin_${name}.cpp")
   add_custom_command(
     OUTPUT "${out}" "${fatbin}"
-    COMMAND "${TRN_NVCC}" ${TRN_NVCC_HOST_FLAGS} -fatbin -O3 -fmad=false -std=c++17 ${gencode} -o "${fatbin}" "${src}"
+    COMMAND "${TRN_NVCC}" ${TRN_NVCC_HOST_FLAGS} -fatbin -O3 -fmad=false ${gencode} -o "${fatbin}" "${src}"
     COMMAND "${CMAKE_COMMAND}" "-DINPUT=${fatbin}" "-DOUTPUT=${out}" "-DNAME=${name}" "-DFILE_NAME=${file_name}"
             -P "${_TRN_EMBED_BINARY_SCRIPT}"
     DEPENDS "${src}" ${headers} "${_TRN_EMBED_BINARY_SCRIPT}"
