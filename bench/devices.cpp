@@ -26,6 +26,6 @@ Backend& backend_for(const std::string& name) {
     return *slot;
 }
 
-bool has_device_clock(const std::string& family) { return family == "opencl" || family == "vulkan"; }
+bool has_device_clock(const std::string& family) { return family == "opencl" || family == "vulkan" || family == "cuda"; }
 
 }  // namespace trn::bench

@@ -21,8 +21,8 @@ const std::vector<DeviceEntry>& bench_devices();
 // The shared backend for a device (created on first use).
 Backend& backend_for(const std::string& name);
 
-// True when the backend's PhaseTimes come from a device clock (OpenCL events, Vulkan timestamps)
-// rather than the host's steady_clock around the call.
+// True when the backend's PhaseTimes come from a device clock (OpenCL events, Vulkan timestamps,
+// CUDA events) rather than the host's steady_clock around the call.
 bool has_device_clock(const std::string& family);
 
 }  // namespace trn::bench

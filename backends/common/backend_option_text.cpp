@@ -43,6 +43,7 @@ const std::vector<BackendOptionName>& backend_option_names() {
         {"vulkan.force_staging", "on|off"},
         {"vulkan.validation", "on|off"},
         {"vulkan.pipeline_cache_dir", "a folder (empty: no disk cache)"},
+        {"cuda.work_group", "1..1024 (a power of two, 32 or more)"},
     };
     return names;
 }
@@ -72,6 +73,8 @@ void set_backend_option(BackendOptions& o, std::string_view name, std::string_vi
         o.vulkan.validation = on_off(name, value);
     } else if (name == "vulkan.pipeline_cache_dir") {
         o.vulkan.pipeline_cache_dir = std::string(value);
+    } else if (name == "cuda.work_group") {
+        o.cuda.work_group = whole_number(name, value, 1024);
     } else {
         std::string known;
         for (const BackendOptionName& n : backend_option_names()) known += (known.empty() ? "" : ", ") + n.name;
@@ -94,11 +97,13 @@ BackendOptions backend_options_from_variables(const VariableLookup& lookup) {
     BackendOptions o;
     for (const auto& [variable, option] : {std::pair{"TRN_OPENCL_DEVICE", "default_device.opencl"},
                                            {"TRN_VULKAN_DEVICE", "default_device.vulkan"},
+                                           {"TRN_CUDA_DEVICE", "default_device.cuda"},
                                            {"TRN_CPU_THREADS", "cpu.threads"},
                                            {"TRN_CPU_SIMD", "cpu.simd"},
                                            {"TRN_OPENCL_WORK_GROUP", "opencl.work_group"},
                                            {"TRN_VULKAN_WORKGROUP", "vulkan.work_group"},
-                                           {"TRN_VULKAN_PARTICLES_PER_GROUP", "vulkan.particles_per_group"}}) {
+                                           {"TRN_VULKAN_PARTICLES_PER_GROUP", "vulkan.particles_per_group"},
+                                           {"TRN_CUDA_WORK_GROUP", "cuda.work_group"}}) {
         const char* v = value_of(variable);
         if (!v) continue;
         try {

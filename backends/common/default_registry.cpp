@@ -9,6 +9,11 @@
 #ifdef TRN_HAVE_VULKAN
 #include "../vulkan/vulkan_family.hpp"
 #endif
+#ifdef TRN_HAVE_CUDA
+#include "../cuda/cuda_family.hpp"
+#elif !defined(TRN_CUDA_MISSING)
+#define TRN_CUDA_MISSING "the CUDA backend was not configured"  // backends/cuda/CMakeLists.txt sets the reason
+#endif
 
 namespace trn {
 namespace {
@@ -45,6 +50,11 @@ BackendRegistry build_default_registry() {
     r.add(vulkan_family());
 #else
     r.add(not_built_family("vulkan", "Vulkan compute shaders", "not built: Vulkan headers, loader or glslangValidator were not found at configure time"));
+#endif
+#ifdef TRN_HAVE_CUDA
+    r.add(cuda_family());
+#else
+    r.add(not_built_family("cuda", "CUDA kernels", "built without CUDA (" TRN_CUDA_MISSING ")"));
 #endif
     return r;
 }

@@ -29,4 +29,9 @@ NccWorkShape choose_vulkan_ncc_shape(const NccDeviceLimits& limits) {
     return {wide_group(limits.lanes, limits.max_group_size), 1};
 }
 
+NccWorkShape choose_cuda_ncc_shape(const NccDeviceLimits& limits) {
+    const std::size_t warp = floor_pow2(std::max<std::size_t>(limits.lanes, 1));
+    return {std::max(wide_group(limits.lanes, limits.max_group_size), warp), 1};
+}
+
 }  // namespace trn

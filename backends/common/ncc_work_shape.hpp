@@ -1,5 +1,6 @@
 #pragma once
-// How the device NCC kernels (kernels/opencl/ncc_score.cl, kernels/vulkan/ncc_score.comp) are
+// How the device NCC kernels (kernels/opencl/ncc_score.cl, kernels/vulkan/ncc_score.comp,
+// kernels/cuda/ncc_score.cu) are
 // shaped: work items per particle and particles per work-group, from what the device reports
 // about itself (never from its type). Integer sums make any shape give cpu-ref's bits, so the
 // rule only decides speed.
@@ -9,9 +10,10 @@ namespace trn {
 
 // What a device says that decides the NCC work-group shape.
 struct NccDeviceLimits {
-    std::size_t max_group_size = 1;      // OpenCL CL_DEVICE_MAX_WORK_GROUP_SIZE; Vulkan min(maxComputeWorkGroupInvocations, maxComputeWorkGroupSize[0])
-    std::size_t lanes = 1;               // OpenCL CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE; Vulkan subgroupSize
-    std::size_t local_memory_bytes = 0;  // OpenCL CL_DEVICE_LOCAL_MEM_SIZE; Vulkan maxComputeSharedMemorySize
+    std::size_t max_group_size = 1;      // OpenCL CL_DEVICE_MAX_WORK_GROUP_SIZE; Vulkan min(maxComputeWorkGroupInvocations, maxComputeWorkGroupSize[0]);
+                                         // CUDA the kernel's CU_FUNC_ATTRIBUTE_MAX_THREADS_PER_BLOCK
+    std::size_t lanes = 1;               // OpenCL CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE; Vulkan subgroupSize; CUDA warp size
+    std::size_t local_memory_bytes = 0;  // OpenCL CL_DEVICE_LOCAL_MEM_SIZE; Vulkan maxComputeSharedMemorySize (CUDA: unused)
     // Local/shared memory is ordinary host memory, i.e. the implementation runs a work-group as a
     // loop on one CPU core: OpenCL CL_DEVICE_LOCAL_MEM_TYPE == CL_GLOBAL; Vulkan: every memory
     // type is device-local, host-visible, coherent and cached (the device has no memory of its own).
@@ -42,5 +44,11 @@ NccWorkShape choose_opencl_ncc_shape(const NccDeviceLimits& limits);
 // groups to fill a GPU). The kernel's shared memory is a fixed 16 KiB, the spec's minimum, so it
 // does not limit the shape. A power of two, >= 1.
 NccWorkShape choose_vulkan_ncc_shape(const NccDeviceLimits& limits);
+
+// CUDA (one particle per block): kNccSubgroupsPerGroup warps, at most kNccMaxGroup and what the
+// kernel allows (registers), a power of two; the kernel's warp-shuffle reduction needs whole warps,
+// so the block is never below one warp (a kernel that allows less is refused by the backend). Its
+// shared memory is a fixed 1.5 KiB, so shared memory does not limit the shape.
+NccWorkShape choose_cuda_ncc_shape(const NccDeviceLimits& limits);
 
 }  // namespace trn

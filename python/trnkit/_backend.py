@@ -46,8 +46,8 @@ def devices() -> list[dict[str, str]]:
 
 
 def families() -> list[str]:
-    """The backend families built into this trnkit ("cpu-ref", "cpu", and "opencl", "vulkan" when
-    the build had them), whether or not this machine has devices for them."""
+    """The backend families this trnkit lists ("cpu-ref", "cpu", "opencl", "vulkan", "cuda"; one the
+    build lacks says so when created), whether or not this machine has devices for them."""
     return _trnkit.families()
 
 
@@ -186,7 +186,7 @@ class Backend(_trnkit.Backend):
             raise TypeError(f"spec must be a str such as 'cpu', 'opencl:1' or 'fastest', not {type(spec).__name__}")
         given = {k: v for k, v in locals().items() if k in _KEYWORD_FAMILIES}
         family = spec.split(":", 1)[0]
-        if family in ("cpu-ref", "cpu", "opencl", "vulkan"):
+        if family in ("cpu-ref", "cpu", "opencl", "vulkan", "cuda"):
             for keyword, value in given.items():
                 default = Backend.__init__.__kwdefaults__[keyword]
                 if family not in _KEYWORD_FAMILIES[keyword] and not (type(value) is type(default) and value == default):

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # scripts/bench-report on fixed bench.json files (tests/bench/data): each speed target of issue 14
 # is reported as a ratio of two rates from the same run with met / not met, and as "not measured"
-# when the run lacks one side (here: no old cpu path, no filter case).
+# when the run lacks one side (here: no old cpu path, no filter case); and issue 28's CUDA ratio.
 # usage: report_issue14_targets.sh REPO_ROOT WORK_DIR
 set -uo pipefail
 repo=$1 work=$2
@@ -27,4 +27,9 @@ expect ncc_issue14_targets.json "the filter's case (160x120 dense N1000): 0.25x 
 report ncc_without_old_path.json
 expect ncc_without_old_path.json "NCC cpu 640x480 dense >= 1.5x the old cpu backend: not measured in this run"
 expect ncc_without_old_path.json "NCC cpu 160x120 dense (the filter's case) >= 2x the old cpu backend: not measured in this run"
+# Issue 28: CUDA against the faster of OpenCL and Vulkan on the same GPU (by device name).
+report ncc_cuda_beside_peers.json
+expect ncc_cuda_beside_peers.json "NCC filter case on cuda:0 (NVIDIA H200) >= 1.0x the faster of OpenCL and Vulkan on the same device: **not met** — 360 vs vulkan:0 400 particles/s = 0.90x"
+expect ncc_cuda_beside_peers.json "random-gather limit: not measured"
+expect ncc_issue14_targets.json "No CUDA device in this run: the CUDA targets were not measured."
 exit $fail

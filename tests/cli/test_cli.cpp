@@ -97,7 +97,7 @@ TEST_F(Cli, BadInputGivesOneClearLineAndNonZeroExit) {
     } cases[] = {
         {"sobel " + path("nothere.png"), "nothere.png: no such file"},
         {"sobel " + path("corrupt.png"), "corrupt.png: not a readable image"},
-        {"sobel " + path("map.png") + " --backend cuda", "backend 'cuda' is not built into this trnkit"},
+        {"sobel " + path("map.png") + " --backend metal", "backend 'metal' is not built into this trnkit"},
         {"score --map " + path("templ.png") + " --template " + path("map.png") + " --poses " + path("poses.csv"),
          "smaller than the template"},
         {"score --map " + path("map.png") + " --template " + path("templ.png") + " --poses " + path("bad.csv"),

@@ -1,6 +1,7 @@
 // trn_conformance --backend FAMILY[:DEVICE] [--require] [gtest flags]   (FAMILY cpu-ref: the oracle vs OpenCV)
 // Registers every case for every selected device and every variant of its family (code paths
-// chosen through BackendOptions: the cpu backend's portable loop, Vulkan's fallback paths) and runs
+// chosen through BackendOptions: the cpu backend's portable loop, Vulkan's fallback paths, CUDA's
+// one-warp blocks) and runs
 // them against cpu-ref. A family with no device is reported "NOT AVAILABLE" by name and exits 77
 // (ctest: skipped), or fails with --require. Base options come from the TRN_* variables as in the
 // CLI (ctest sets TRN_VULKAN_VALIDATION=1).
@@ -40,6 +41,10 @@ std::vector<Variant> variants(const std::string& family, const trn::BackendOptio
         fallbacks.options.vulkan.force_staging = true;
         fallbacks.options.vulkan.quad_maps = false;
         out.push_back(fallbacks);
+    } else if (family == "cuda") {
+        Variant one_warp{"_one_warp", base};  // the NCC reduction without its shared-memory step
+        one_warp.options.cuda.work_group = 32;
+        out.push_back(one_warp);
     }
     return out;
 }

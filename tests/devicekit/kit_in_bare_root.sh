@@ -62,6 +62,10 @@ for family in opencl vulkan; do
   grep -qE "^\| conformance $family \(every device\) \| not available: NOT AVAILABLE \(no ICD: .+\)" "$s" ||
     fail "$family is not reported 'not available' with its reason"
 done
+# cuda: "built without CUDA (...)" from a build without nvcc, else the driver library's absence.
+grep -qE "^\| conformance cuda \(every device\) \| not available: NOT AVAILABLE \((built without CUDA|the CUDA driver library libcuda.so.1 could not be loaded).+\)" "$s" ||
+  fail "cuda is not reported 'not available' with its reason"
+grep -qE '^- CUDA: libcuda.so.1 not in ldconfig' "$s" || fail "the CUDA driver search is not reported"
 grep -qE '^- OpenCL: no NVIDIA ICD' "$s" || fail "the OpenCL ICD search is not reported"
 grep -qE '^- Vulkan: no ICD' "$s" || fail "the Vulkan ICD search is not reported"
 [[ -s "$out/bench.json" ]] || fail "no bench.json"

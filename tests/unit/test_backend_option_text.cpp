@@ -34,6 +34,7 @@ TEST(BackendOptionText, EveryFieldByItsName) {
     set_backend_option(o, "vulkan.force_staging", "on");
     set_backend_option(o, "vulkan.validation", "1");
     set_backend_option(o, "vulkan.pipeline_cache_dir=");
+    set_backend_option(o, "cuda.work_group", "128");
     EXPECT_EQ(o.default_device.at("opencl"), "pocl");
     EXPECT_EQ(o.default_device.at("vulkan"), "1");
     EXPECT_EQ(o.cpu.threads, 3);
@@ -47,6 +48,7 @@ TEST(BackendOptionText, EveryFieldByItsName) {
     EXPECT_TRUE(o.vulkan.force_staging);
     EXPECT_TRUE(o.vulkan.validation);
     EXPECT_EQ(o.vulkan.pipeline_cache_dir, "");
+    EXPECT_EQ(o.cuda.work_group, 128u);
     // Every listed name is taken (FAMILY stands for any family).
     for (const BackendOptionName& n : backend_option_names()) {
         const std::string value = n.values.starts_with("on|off") ? "on" : n.values.starts_with("1..") ? "1" : "x";

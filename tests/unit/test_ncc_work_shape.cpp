@@ -56,6 +56,16 @@ TEST(NccWorkShape, VulkanFollowsSubgroupAndHostMemory) {
     EXPECT_EQ(igpu.particles_per_group, 1u);
 }
 
+TEST(NccWorkShape, CudaTakesWholeWarps) {
+    // H200-like: 1024 threads, warps of 32: 8 warps.
+    EXPECT_EQ(choose_cuda_ncc_shape(limits(1024, 32, 48 << 10, false)).group_size, 256u);
+    // A kernel whose registers allow only 128 threads per block.
+    EXPECT_EQ(choose_cuda_ncc_shape(limits(128, 32, 48 << 10, false)).group_size, 128u);
+    // Never below one warp: the backend refuses a kernel that allows less (cuda_plan.cpp).
+    EXPECT_EQ(choose_cuda_ncc_shape(limits(16, 32, 48 << 10, false)).group_size, 32u);
+    EXPECT_EQ(choose_cuda_ncc_shape(limits(1024, 32, 48 << 10, false)).particles_per_group, 1u);
+}
+
 TEST(NccWorkShape, OddReportsStillGiveAValidShape) {
     for (bool host : {false, true})
         for (const auto& [g, l, m] : {std::tuple<std::size_t, std::size_t, std::size_t>{0, 0, 0}, {1, 1, 1}, {3, 48, 100},

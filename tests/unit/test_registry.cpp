@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 
 #include "trn/registry.hpp"
@@ -11,7 +12,7 @@ TEST(Registry, ListsCpuFamiliesAndEveryOtherFamilyByName) {
     const auto status = default_registry().status();
     std::vector<std::string> families;
     for (const auto& s : status) families.push_back(s.family);
-    EXPECT_EQ(families, (std::vector<std::string>{"cpu-ref", "cpu", "opencl", "vulkan"}));
+    EXPECT_EQ(families, (std::vector<std::string>{"cpu-ref", "cpu", "opencl", "vulkan", "cuda"}));
     for (const auto& s : status) {
         if (s.devices.empty()) {
             EXPECT_FALSE(s.why_none.empty()) << s.family << " has no devices and no reason";
@@ -38,7 +39,13 @@ TEST(Registry, RefusesClearlyAndNeverFallsBack) {
         }
         return std::string("no error");
     };
-    EXPECT_NE(message("cuda").find("not built into this trnkit"), std::string::npos);
+    EXPECT_NE(message("metal").find("not built into this trnkit"), std::string::npos);
+    // A family this build lists is refused with its reason: "built without CUDA (...)", or why the
+    // driver offers no device (tests/cuda checks the reasons).
+    const std::vector<std::string> names = default_registry().available();
+    if (std::none_of(names.begin(), names.end(), [](const std::string& n) { return n.starts_with("cuda:"); })) {
+        EXPECT_NE(message("cuda").find("backend 'cuda' is not available: "), std::string::npos) << message("cuda");
+    }
     EXPECT_NE(message("cpu:3").find("out of range"), std::string::npos);
     // An index too big for any integer is out of range too, not a std::stoi exception.
     EXPECT_NE(message("cpu:99999999999999999999").find("device index 99999999999999999999 out of range"), std::string::npos);

@@ -38,6 +38,10 @@ struct BackendOptions {
         bool validation = false;                // Khronos validation layer; any message it reports throws
         std::string pipeline_cache_dir;         // folder for the pipeline cache file; empty: no disk cache
     } vulkan;
+
+    struct Cuda {
+        std::uint32_t work_group = 0;  // NCC threads per block, a power of two in [32, 1024]; 0: from device queries (ncc_work_shape.hpp)
+    } cuda;
 };
 
 }  // namespace trn

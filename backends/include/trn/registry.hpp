@@ -56,7 +56,7 @@ public:
 
     // "fastest": a fixed preference order, so that two runs on one machine always pick the same
     // backend (a timing race could flip between near-equal devices): GPU devices (OpenCL, then
-    // Vulkan, by name), then the optimised CPU backend, then any other device (e.g. PoCL or
+    // Vulkan, then other families such as CUDA, by name), then the optimised CPU backend, then any other device (e.g. PoCL or
     // lavapipe on the CPU), and cpu-ref (the slow oracle) only when it is the only one.
     // The device names in that order; pure, so the order is testable.
     static std::vector<std::string> preferred_order(const std::vector<DeviceInfo>& devices);
@@ -70,7 +70,7 @@ private:
     std::vector<BackendFamily> families_;
 };
 
-// cpu-ref, cpu, and the OpenCL and Vulkan families when this build has them.
+// cpu-ref, cpu, opencl, vulkan and cuda; a family this build lacks is listed with the reason.
 const BackendRegistry& default_registry();
 
 }  // namespace trn
