@@ -91,7 +91,7 @@ std::string shell_word(const std::string& text) {
 std::string command_prefix(const ExperimentOptions& o, const std::string& out) {
     std::string radius;
     if (!std::isnan(o.init_radius_m)) {
-        char text[32];
+        char text[48];  // " --init-radius-m " and up to 24 characters of %.17g: 32 cut 99999.123456789012 short
         std::snprintf(text, sizeof text, " --init-radius-m %.17g", o.init_radius_m);  // reads back as the same double
         radius = text;
     }
@@ -127,13 +127,10 @@ void check_backend_spec(const std::string& spec) {
                     ":' comes a device index or name text (letters, digits, space . _ -)");
 }
 
-}  // namespace
-
-std::size_t run_experiment(const ExperimentOptions& o) {
-    check_backend_spec(o.backend);
-    const auto study = make_study(o.study, o.shared_data);
-    Json config = study->config(o.quick);
-    config["study"] = o.study;
+// A study's whole configuration under these options: what its jobs share and what a stored line must match.
+Json full_configuration(const Study& study, const ExperimentOptions& o) {
+    Json config = study.config(o.quick);
+    config["study"] = study.name();
     config["quick"] = o.quick;
     config["seed"] = o.seed;
     config["backend"] = o.backend;
@@ -161,6 +158,16 @@ std::size_t run_experiment(const ExperimentOptions& o) {
             throw Error("experiment: `init_radius_m` " + std::to_string(o.init_radius_m) + " must be in (0, 100000]");
         config["init_radius_m"] = o.init_radius_m;
     }
+    return config;
+}
+
+}  // namespace
+
+std::size_t run_experiment(const ExperimentOptions& o) {
+    check_backend_spec(o.backend);
+    const auto study = make_study(o.study, o.shared_data);
+    const Json config = full_configuration(*study, o);
+    const filter::Profile profile = filter::parse_profile(config.at("profile").get<std::string>());
     const std::vector<Json> jobs = study->jobs(config);
     std::set<std::string> ids;
     for (const Json& j : jobs)
@@ -175,10 +182,17 @@ std::size_t run_experiment(const ExperimentOptions& o) {
     if (o.resume && !store.enabled()) throw Error("experiment: `resume` needs the results store (not `results` none)");
     const std::string store_note = store.load();
     if (o.resume && !store_note.empty() && !o.list_jobs) std::cerr << "experiment " << o.study << ": note: " << store_note << "\n";
+    // The store of the study whose flights these are (robustness: conversion's), read with --resume
+    // when both use their default stores: a flight either has made counts for both.
+    const std::string lender = study->flights_shared_with();
+    ResultsStore shared(o.resume && o.results.empty() && !lender.empty() ? default_results_path(lender, config["profile"], o.quick) : std::string(),
+                        lender.empty() ? Json() : full_configuration(*make_study(lender, o.shared_data), o));
+    if (shared.enabled()) shared.load();  // its lines of other configurations are that study's business
+    auto stored = [&](const std::string& id) { return o.resume && (store.has(id) || shared.has(id)); };
     if (o.list_jobs && o.list_ids_only) {  // for scripts: each line is one --job argument, never shell text
         std::size_t listed = 0;
         for (const Json& j : jobs)
-            if (!(o.resume && store.has(j.at("id").get<std::string>()))) std::cout << j.at("id").get<std::string>() << "\n", ++listed;
+            if (!stored(j.at("id").get<std::string>())) std::cout << j.at("id").get<std::string>() << "\n", ++listed;
         return listed;
     }
     if (o.list_jobs) {
@@ -197,7 +211,7 @@ std::size_t run_experiment(const ExperimentOptions& o) {
     if (ec) throw Error(jobs_dir + ": cannot create folder (" + ec.message() + ")");
     auto job_path = [&](const Json& j) { return jobs_dir + "/" + j.at("id").get<std::string>() + ".json"; };
     // A finished job is reused only when it was made with exactly this configuration.
-    auto in_store = [&](const Json& j) { return o.resume && store.has(j.at("id").get<std::string>()); };
+    auto in_store = [&](const Json& j) { return stored(j.at("id").get<std::string>()); };
     auto finished = [&](const Json& j) {
         if (in_store(j)) return true;
         const std::string path = job_path(j);
@@ -232,7 +246,7 @@ std::size_t run_experiment(const ExperimentOptions& o) {
                 Json job{{"config", config}, {"params", params}, {"result", result}, {"wall_s", wall}, {"backend_device", backend->info().device}};
                 io::add_provenance(job);
                 write_json(job_path(params), job);
-                if (!store.has(params.at("id").get<std::string>()))
+                if (!store.has(params.at("id").get<std::string>()) && !shared.has(params.at("id").get<std::string>()))
                     store.append(params, result, wall, backend->info().device, std::string(build_info().git_commit));
             }
             if (o.progress) progress_bar(todo.size(), todo.size(), "done");
@@ -241,7 +255,7 @@ std::size_t run_experiment(const ExperimentOptions& o) {
     if (o.no_merge) return 0;
 
     std::vector<Json> outputs;
-    std::size_t missing = 0, from_store = 0;
+    std::size_t missing = 0, from_store = 0, from_shared = 0;
     double wall_s = 0;
     std::set<std::string> devices;
     for (const Json& j : jobs) {
@@ -250,9 +264,12 @@ std::size_t run_experiment(const ExperimentOptions& o) {
             continue;
         }
         const std::string id = j.at("id").get<std::string>();
-        if (in_store(j)) {
+        if (o.resume && store.has(id)) {
             outputs.push_back(store.output(id));
             ++from_store;
+        } else if (o.resume && shared.has(id)) {
+            outputs.push_back(shared.output(id));
+            ++from_shared;
         } else {
             outputs.push_back(read_json(job_path(j)));
         }
@@ -273,11 +290,13 @@ std::size_t run_experiment(const ExperimentOptions& o) {
         if (config.contains("lock_monitor")) head += std::string(", lock monitor ") + (config["lock_monitor"].get<bool>() ? "on" : "off");
         head += "; " + std::to_string(outputs.size()) + " of " + std::to_string(jobs.size()) + " jobs";
         if (from_store) head += " (" + std::to_string(from_store) + " from the results store " + store.path() + ", configuration " + store.hash() + ")";
+        if (from_shared)
+            head += " (" + std::to_string(from_shared) + " flights of " + lender + " from " + shared.path() + ", configuration " + shared.hash() + ")";
         markdown = head + ".\n\n" + markdown;
     }
     io::write_file_atomic(out + "/results.md", markdown);
     Json prov{{"study", o.study}, {"profile", config["profile"]}, {"seed", o.seed}, {"backend", o.backend},
-              {"results_store", store.path()}, {"config_hash", store.hash()}, {"jobs_from_store", from_store},
+              {"results_store", store.path()}, {"config_hash", store.hash()}, {"jobs_from_store", from_store}, {"shared_store", shared.path()}, {"jobs_from_shared_store", from_shared},
               {"backend_devices", devices}, {"jobs", jobs.size()}, {"jobs_merged", outputs.size()}, {"job_wall_s_total", wall_s}, {"config", config}};
     io::add_provenance(prov);
     write_json(out + "/provenance.json", prov);

@@ -51,6 +51,10 @@ public:
     virtual Json run_job(const Json& config, const Json& params, JobContext& context) const = 0;
     // Builds tables / plots from every job's {"params", "result"}; returns Markdown for RESULTS.md.
     virtual std::string merge(const std::vector<Json>& outputs, const MergeContext& context) const = 0;
+    // A study whose jobs are another's flights (the same ids flown the same way, only fewer of
+    // them) names that study: with --resume, that study's default results store counts too, so a
+    // flight is flown once for both.
+    virtual std::string flights_shared_with() const { return ""; }
 };
 
 // `orthophoto`: the real map's file (world.hpp: orthophoto_path), "" when absent.

@@ -91,13 +91,15 @@ std::vector<std::string> strings(const Json& j) { return j.get<std::vector<std::
 int preset_index(const std::string& p) { return static_cast<int>(std::find(kAllPresets.begin(), kAllPresets.end(), p) - kAllPresets.begin()); }
 
 // Both sweeps fly preset x function x map age x run; a job's id names all four
-// ("UR-200-logistic_0.2-age4-3"), so one flight has the same id in either study.
+// ("UR-200-logistic_0.2-age4-3"), so one flight has the same id in either study. Runs are the
+// outer loop: a batch of the first N jobs still to run (experiment-parallel --batch) gives every
+// cell one more run before any cell gets the next, so a partial merge stays balanced.
 std::vector<Json> flight_jobs(const Json& c) {
     std::vector<Json> out;
-    for (const auto& p : strings(c.at("presets")))
-        for (const auto& f : strings(c.at("conversions")))
-            for (int age : c.at("map_ages").get<std::vector<int>>())
-                for (int r = 0; r < c.at("runs").get<int>(); ++r)
+    for (int r = 0; r < c.at("runs").get<int>(); ++r)
+        for (const auto& p : strings(c.at("presets")))
+            for (const auto& f : strings(c.at("conversions")))
+                for (int age : c.at("map_ages").get<std::vector<int>>())
                     out.push_back({{"id", p + "-" + safe_id(f) + "-age" + std::to_string(age) + "-" + std::to_string(r)},
                                    {"preset", p}, {"conversion", f}, {"map_age", age}, {"run", r}});
     return out;
@@ -322,6 +324,8 @@ public:
     std::string merge(const std::vector<Json>& o, const MergeContext& mc) const override {
         return robustness_table(o, mc) + "\n" + claims_table(o, mc, false);
     }
+    // Its flights are the conversion study's parametric ones (fly() reads nothing else of the configuration).
+    std::string flights_shared_with() const override { return "conversion"; }
 };
 
 // `odometry` flies the twelve presets as published; `odometry-wind` their '-wind' twins (crab,

@@ -73,9 +73,12 @@ TEST(ConversionJobs, EveryCellOnTheFourMapYears) {
     }
     EXPECT_EQ(ages.size(), 12u * 12 * 10);
     for (const auto& [cell, a] : ages) EXPECT_EQ(a, (std::set<int>{0, 2, 4, 6})) << cell;
+    // Runs outermost: any first N jobs hold every cell's run r before any cell's run r + 1.
     EXPECT_EQ(jobs.front().at("id"), "FL-200-linear-age0-0");
-    EXPECT_EQ(jobs[1].at("id"), "FL-200-linear-age0-1");
-    EXPECT_EQ(jobs[10].at("id"), "FL-200-linear-age2-0");
+    EXPECT_EQ(jobs[1].at("id"), "FL-200-linear-age2-0");
+    EXPECT_EQ(jobs[4].at("id"), "FL-200-softmax-age0-0");
+    const std::size_t per_run = 12 * 12 * 4;
+    for (std::size_t k = 0; k < jobs.size(); ++k) EXPECT_EQ(jobs[k].at("run").get<std::size_t>(), k / per_run) << jobs[k].at("id");
 }
 
 TEST(ConversionJobs, QuickStaysAtTwelveFlightsOnTheExtremeYears) {
