@@ -113,6 +113,25 @@ std::string map_years(const Json& config) {
     return years;
 }
 
+// What a cell of Tables 3.7-3.11 is the mean of: the configuration's runs x map years when every
+// cell is whole, else the flights the cells actually hold (a partial merge), counted.
+std::string flights_per_cell(const std::vector<Json>& o, const Json& config) {
+    const int runs = config.at("runs").get<int>(), ages = static_cast<int>(config.at("map_ages").size());
+    std::map<std::pair<std::string, std::string>, int> count;
+    for (const auto& p : strings(config.at("presets")))
+        for (const auto& f : strings(config.at("conversions"))) count[{p, f}] = 0;
+    for (const Json& out : o) {
+        const Json& p = out.at("params");
+        if (const auto it = count.find({p.at("preset").get<std::string>(), p.at("conversion").get<std::string>()}); it != count.end()) ++it->second;
+    }
+    int fewest = runs * ages, most = 0;
+    for (const auto& [cell, n] : count) fewest = std::min(fewest, n), most = std::max(most, n);
+    const std::string design = std::to_string(runs) + " runs x " + std::to_string(ages) + " map years (" + map_years(config) + ")";
+    if (fewest == runs * ages) return design;
+    return (fewest == most ? std::to_string(fewest) : std::to_string(fewest) + "-" + std::to_string(most)) + " of the " +
+           std::to_string(runs * ages) + " flights of " + design;
+}
+
 // Table 3.12 and Fig 3.7 from every function of the configuration over the map ages.
 std::string robustness_table(const std::vector<Json>& o, const MergeContext& mc) {
     const auto ages = mc.config.at("map_ages").get<std::vector<int>>();
@@ -217,8 +236,7 @@ public:
     }
     std::string merge(const std::vector<Json>& o, const MergeContext& mc) const override {
         const auto presets = strings(mc.config.at("presets"));
-        const std::string per_cell = std::to_string(mc.config.at("runs").get<int>()) + " runs x " +
-                                     std::to_string(mc.config.at("map_ages").size()) + " map years (" + map_years(mc.config) + ")";
+        const std::string per_cell = flights_per_cell(o, mc.config);
         std::string md;
         for (const diss::Family fam : {diss::Family::Logistic, diss::Family::Rectifying}) {
             const bool logistic = fam == diss::Family::Logistic;
