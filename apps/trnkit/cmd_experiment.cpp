@@ -76,7 +76,10 @@ void add_experiment_command(CLI::App& app) {
         a->backend_options = backend_options_from_environment();
         if (const char* dir = std::getenv("TRN_SHARED_DATA")) a->shared_data = dir;  // the real-map jobs
         const std::size_t missing = experiments::run_experiment(*a);
-        if (missing && !a->list_jobs && !a->prepare_only && !a->no_merge && !a->partial) throw trn::Error("experiment " + a->study + ": " + std::to_string(missing) + " job(s) not finished");
+        // A merge that built no tables fails, --partial included (it returns 0 once it merged something).
+        if (missing && !a->list_jobs && !a->prepare_only && !a->no_merge)
+            throw trn::Error("experiment " + a->study + ": " + std::to_string(missing) + " job(s) not finished" +
+                             (a->partial ? " (none finished: nothing to merge)" : ""));
     });
 }
 
