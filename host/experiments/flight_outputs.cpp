@@ -1,5 +1,6 @@
 #include "flight_outputs.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <string>
@@ -62,6 +63,38 @@ double out_of_date_loss_percent(const std::vector<Json>& outputs, const std::str
     const double same_year = mean_of(outputs, "filter_mean_error_m", at_age("", conversion, 0));
     const double other_years = mean_of(outputs, "filter_mean_error_m", {"", conversion, 1});
     return 100 * (other_years / same_year - 1);
+}
+
+namespace {
+
+double median(std::vector<double> v) {
+    if (v.empty()) return NAN;
+    std::sort(v.begin(), v.end());
+    const std::size_t n = v.size();
+    return n % 2 ? v[n / 2] : (v[n / 2 - 1] + v[n / 2]) / 2;
+}
+
+}  // namespace
+
+Table odometry_summary(const std::vector<Json>& outputs, const std::string& study) {
+    std::vector<double> filter_final, odometry_final, filter_mean, odometry_mean;
+    int final_below = 0, mean_below = 0, within_10 = 0;
+    for (const Json& o : outputs) {
+        const Json& r = o.at("result");
+        const double ff = get(r, "filter_final_error_m"), of = get(r, "odometry_final_error_m");
+        const double fm = get(r, "filter_mean_error_m"), om = get(r, "odometry_mean_error_m");
+        filter_final.push_back(ff), odometry_final.push_back(of), filter_mean.push_back(fm), odometry_mean.push_back(om);
+        final_below += ff < of, mean_below += fm < om, within_10 += ff < 10;
+    }
+    const std::string of_n = " of " + std::to_string(outputs.size());
+    Table t;
+    t.title = "The filter against the odometry, " + std::to_string(outputs.size()) + " flights";
+    t.header = {"Study", "Final error below odometry's", "Mean error below odometry's", "Median mean error m, filter vs odometry",
+                "Median final error m, filter vs odometry", "Final error < 10 m"};
+    t.rows.push_back({study, std::to_string(final_below) + of_n, std::to_string(mean_below) + of_n,
+                      fmt(median(filter_mean)) + " vs " + fmt(median(odometry_mean)), fmt(median(filter_final)) + " vs " + fmt(median(odometry_final)),
+                      std::to_string(within_10) + of_n});
+    return t;
 }
 
 }  // namespace trn::experiments

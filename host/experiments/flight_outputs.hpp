@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "study.hpp"
+#include "table.hpp"
 #include "trn/localize/localization.hpp"
 
 namespace trn::experiments {
@@ -42,5 +43,10 @@ WinCount scenarios_where_more_accurate(const std::vector<Json>& outputs, const s
 // 100 * (mean over jobs with map age > 0 / mean over jobs with map age 0 - 1). `conversion` ""
 // pools every function. NaN when either side has no job.
 double out_of_date_loss_percent(const std::vector<Json>& outputs, const std::string& conversion);
+
+// The filter against the odometry over a study's flights, one row: in how many flights the filter's
+// final and mean errors are below the odometry's, the median errors of both, and how many flights
+// end within 10 m. `study` names the row.
+Table odometry_summary(const std::vector<Json>& outputs, const std::string& study);
 
 }  // namespace trn::experiments

@@ -397,7 +397,9 @@ public:
         }
         t.rows.push_back({"Mean", "", "", "", fmt(final_ratio / n), "2", "", "", fmt(slope_ratio / n), "11", "", "", ""});
         t.write(mc.out, "table_odometry");
-        std::string md = t.markdown();
+        const Table summary = odometry_summary(o, name());
+        summary.write(mc.out, "table_odometry_summary");
+        std::string md = summary.markdown() + "\n" + t.markdown();
         if (visual_) md += "\n" + table_3_13([&](const std::string& p, const char* key) { return mean_of(o, key, FlightCell{p, ""}); }, mc.out);
         if (mc.plots) md += "\nPer-flight plots (trajectory.png, error.png) of run 0 are in " + mc.out + "/jobs/<flight>/\n";
         return md;

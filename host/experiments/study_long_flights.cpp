@@ -126,7 +126,9 @@ public:
                               fmt(get(r, "odometry_mean_error_m")), fmt(get(r, "lock_lost_events"), 0), fmt(out.value("wall_s", NAN), 0)});
         }
         t.write(mc.out, "table_long_flights");
-        return t.markdown();
+        const Table summary = odometry_summary(o, name());
+        summary.write(mc.out, "table_odometry_summary");
+        return summary.markdown() + "\n" + t.markdown();
     }
 };
 
