@@ -5,7 +5,7 @@
 # text with its #include "x.clh" lines pasted in, and the text's SHA-256 (the program-cache key).
 # Generation runs `cmake -P embed_opencl_source.cmake` at build time, so kernel edits need no
 # reconfigure and no Python; the output is rewritten only when its content changes.
-set(_TRN_EMBED_OPENCL_SCRIPT "${CMAKE_CURRENT_LIST_DIR}/embed_opencl_source.cmake")
+set(_TRN_EMBED_OPENCL_SCRIPTS "${CMAKE_CURRENT_LIST_DIR}/embed_opencl_source.cmake" "${CMAKE_CURRENT_LIST_DIR}/embed_common.cmake")
 
 function(trn_embed_opencl out_var)
   cmake_parse_arguments(ARG "" "OUTPUT_DIR" "SOURCES" ${ARGN})
@@ -22,8 +22,8 @@ function(trn_embed_opencl out_var)
     add_custom_command(
       OUTPUT "${out}"
       COMMAND "${CMAKE_COMMAND}" "-DSOURCE=${src}" "-DOUTPUT=${out}" "-DNAME=${name}"
-              -P "${_TRN_EMBED_OPENCL_SCRIPT}"
-      DEPENDS "${src}" ${headers} "${_TRN_EMBED_OPENCL_SCRIPT}"
+              -P "${CMAKE_CURRENT_FUNCTION_LIST_DIR}/embed_opencl_source.cmake"
+      DEPENDS "${src}" ${headers} ${_TRN_EMBED_OPENCL_SCRIPTS}
       COMMENT "Embedding OpenCL kernel ${name}.cl"
       VERBATIM)
     list(APPEND generated "${out}")

@@ -112,7 +112,7 @@ endif()
 # <binary dir>/<name>.fatbin (cubins for TRN_CUDA_CUBINS, PTX for TRN_CUDA_PTX_ARCH) and embedding it
 # as cuda_fatbin_<name>.cpp; <out_var> is the generated source. Exact float arithmetic: -fmad=false.
 # The kernels are C++11, so nvcc's default language level (older toolkits: C++14) is kept.
-set(_TRN_EMBED_BINARY_SCRIPT "${CMAKE_CURRENT_LIST_DIR}/embed_binary.cmake")
+set(_TRN_EMBED_BINARY_SCRIPTS "${CMAKE_CURRENT_LIST_DIR}/embed_binary.cmake" "${CMAKE_CURRENT_LIST_DIR}/embed_common.cmake")
 function(trn_cuda_fatbin out_var)
   cmake_parse_arguments(ARG "" "SOURCE" "" ${ARGN})
   get_filename_component(src "${ARG_SOURCE}" ABSOLUTE)
@@ -131,8 +131,8 @@ function(trn_cuda_fatbin out_var)
     OUTPUT "${out}" "${fatbin}"
     COMMAND "${TRN_NVCC}" ${TRN_NVCC_HOST_FLAGS} -fatbin -O3 -fmad=false ${gencode} -o "${fatbin}" "${src}"
     COMMAND "${CMAKE_COMMAND}" "-DINPUT=${fatbin}" "-DOUTPUT=${out}" "-DNAME=${name}" "-DFILE_NAME=${file_name}"
-            -P "${_TRN_EMBED_BINARY_SCRIPT}"
-    DEPENDS "${src}" ${headers} "${_TRN_EMBED_BINARY_SCRIPT}"
+            -P "${CMAKE_CURRENT_FUNCTION_LIST_DIR}/embed_binary.cmake"
+    DEPENDS "${src}" ${headers} ${_TRN_EMBED_BINARY_SCRIPTS}
     COMMENT "Compiling ${file_name} with nvcc (cubins ${TRN_CUDA_CUBINS}, PTX ${TRN_CUDA_PTX_ARCH}) and embedding it"
     VERBATIM)
   set(${out_var} "${out}" PARENT_SCOPE)

@@ -4,14 +4,8 @@
 # #include "x.clh" replaced by that file, looked up beside SOURCE) as a byte array, and its
 # SHA-256. Bytes rather than a raw string literal, so no kernel text can end the literal early.
 # OUTPUT is left untouched when its content would not change, so dependants do not rebuild.
-foreach(var SOURCE OUTPUT NAME)
-  if(NOT DEFINED ${var})
-    message(FATAL_ERROR "embed_opencl_source.cmake: -D${var}=... is required")
-  endif()
-endforeach()
-if(NOT NAME MATCHES "^[A-Za-z_][A-Za-z0-9_]*$")
-  message(FATAL_ERROR "embed_opencl_source.cmake: NAME '${NAME}' is not a C++ identifier")
-endif()
+include("${CMAKE_CURRENT_LIST_DIR}/embed_common.cmake")
+trn_embed_require(embed_opencl_source.cmake SOURCE OUTPUT NAME)
 
 get_filename_component(dir "${SOURCE}" DIRECTORY)
 file(READ "${SOURCE}" text)
@@ -35,9 +29,7 @@ endwhile()
 
 string(SHA256 hash "${text}")
 string(HEX "${text}" hex)
-string(REGEX REPLACE "([0-9a-f][0-9a-f])" "0x\\1," bytes "${hex}")
-string(REPEAT "0x[0-9a-f][0-9a-f]," 20 twenty_bytes)  # CMake regexes have no {n}
-string(REGEX REPLACE "(${twenty_bytes})" "\\1\n    " bytes "${bytes}")
+trn_hex_as_c_bytes("${hex}" 20 bytes)
 get_filename_component(source_name "${SOURCE}" NAME)
 
 set(content "// Generated from ${source_name} by cmake/embed_opencl_source.cmake. Do not edit.
@@ -56,10 +48,4 @@ EmbeddedKernel embedded_${NAME}() {
 }  // namespace trn::opencl
 ")
 
-if(EXISTS "${OUTPUT}")
-  file(READ "${OUTPUT}" old)
-  if(old STREQUAL content)
-    return()
-  endif()
-endif()
-file(WRITE "${OUTPUT}" "${content}")
+trn_write_if_changed("${OUTPUT}" "${content}")
