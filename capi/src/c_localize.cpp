@@ -31,8 +31,17 @@ struct trn_air_reader {
 
 namespace {
 
+trn::filter::Profile profile_named(const char* name, const char* what) {
+    try {
+        return trn::filter::parse_profile(name ? name : "ours");
+    } catch (const trn::Error& e) {
+        throw InvalidArgument(std::string(what) + ": " + e.what());
+    }
+}
+
 trn::localize::LocalizerConfig to_config(const trn_localizer_config& c) {
-    trn::localize::LocalizerConfig l;
+    // The profile first (what the struct has no field for), then every field over it.
+    trn::localize::LocalizerConfig l = trn::localize::localizer_profile(profile_named(c.profile, "config->profile"));
     l.start_x = c.start_x, l.start_y = c.start_y, l.start_heading_rad = c.start_heading_rad;
     l.camera_hfov_deg = c.camera_hfov_deg, l.max_tilt_deg = c.max_tilt_deg;
     l.scoring.template_width = c.template_width;
@@ -52,6 +61,7 @@ trn::localize::LocalizerConfig to_config(const trn_localizer_config& c) {
         }
     }
     f.init_heading_sd_deg = c.start_heading_sd_deg;
+    f.lock.enabled = c.lock_monitor != 0;
     return l;
 }
 
@@ -82,12 +92,8 @@ trn_observation to_c(const trn::localize::Observation& o) {
     return c;
 }
 
-}  // namespace
-
-extern "C" {
-
-trn_localizer_config trn_localizer_config_default(void) {
-    const trn::localize::LocalizerConfig l;
+trn_localizer_config config_of(trn::filter::Profile profile) {
+    const trn::localize::LocalizerConfig l = trn::localize::localizer_profile(profile);
     trn_localizer_config c{};
     c.start_x = c.start_y = NAN, c.start_heading_rad = NAN;
     c.camera_hfov_deg = NAN, c.max_tilt_deg = l.max_tilt_deg;
@@ -99,7 +105,22 @@ trn_localizer_config trn_localizer_config_default(void) {
     c.init_radius_m = l.filter.init_radius_m, c.reinit_radius_m = l.filter.reinit_radius_m;
     c.heading = nullptr;
     c.start_heading_sd_deg = l.filter.init_heading_sd_deg;
+    c.profile = trn::filter::to_string(profile);  // a static string
+    c.lock_monitor = l.filter.lock.enabled ? 1 : 0;
     return c;
+}
+
+}  // namespace
+
+extern "C" {
+
+trn_localizer_config trn_localizer_config_default(void) { return config_of(trn::filter::Profile::Ours); }
+
+trn_status trn_localizer_config_for_profile(const char* profile, trn_localizer_config* out) {
+    return guarded(__func__, [&] {
+        require_pointer(out, "out");
+        *out = config_of(profile_named(profile, "profile"));
+    });
 }
 
 trn_observation trn_observation_default(void) {

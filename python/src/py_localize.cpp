@@ -58,9 +58,18 @@ struct PyLocalizer : BackendUser {
 localize::LocalizerConfig make_config(std::optional<std::pair<double, double>> start, std::optional<double> start_heading_rad,
                                       std::optional<double> camera_hfov_deg, double max_tilt_deg, int template_width, double sparse,
                                       std::uint64_t seed, const std::string& conversion, const std::string& sampling,
-                                      std::size_t min_particles, std::size_t max_particles, std::size_t particles, double init_radius_m,
-                                      double reinit_radius_m, const std::string& heading, std::optional<double> start_heading_sd_deg) {
+                                      std::optional<std::size_t> min_particles, std::optional<std::size_t> max_particles,
+                                      std::optional<std::size_t> particles, std::optional<double> init_radius_m,
+                                      std::optional<double> reinit_radius_m, const std::string& heading, std::optional<double> start_heading_sd_deg,
+                                      const std::string& profile, std::optional<bool> lock_monitor) {
+    // The profile first (ours or dissertation: docs/PROFILES.md); a keyword given (not None) over it.
     localize::LocalizerConfig c;
+    try {
+        c = localize::localizer_profile(filter::parse_profile(profile));
+    } catch (const Error& e) {
+        throw pyb::value_error(std::string("profile: ") + e.what());
+    }
+    if (lock_monitor) c.filter.lock.enabled = *lock_monitor;
     try {
         c.filter.heading = filter::parse_heading_mode(heading);
     } catch (const Error& e) {
@@ -86,8 +95,11 @@ localize::LocalizerConfig make_config(std::optional<std::pair<double, double>> s
     } catch (const Error& e) {
         throw pyb::value_error(std::string("sampling: ") + e.what());
     }
-    c.filter.min_particles = min_particles, c.filter.max_particles = max_particles, c.filter.fixed_particles = particles;
-    c.filter.init_radius_m = init_radius_m, c.filter.reinit_radius_m = reinit_radius_m;
+    if (min_particles) c.filter.min_particles = *min_particles;
+    if (max_particles) c.filter.max_particles = *max_particles;
+    if (particles) c.filter.fixed_particles = *particles;
+    if (init_radius_m) c.filter.init_radius_m = *init_radius_m;
+    if (reinit_radius_m) c.filter.reinit_radius_m = *reinit_radius_m;
     return c;
 }
 
@@ -221,9 +233,13 @@ pyb::dict localize_flight(const std::string& dataset, const std::string& map, co
                           double hfov_deg, double fps, double rate_hz, std::optional<std::pair<double, double>> start,
                           std::optional<double> start_heading_rad, const std::string& odometry, double max_tilt_deg, int template_width,
                           double sparse, std::uint64_t seed, const std::string& conversion, const std::string& sampling,
-                          std::size_t min_particles, std::size_t max_particles, std::size_t particles, double init_radius_m,
-                          double reinit_radius_m, const std::string& out, bool plots, const std::string& heading,
-                          std::optional<double> start_heading_sd_deg, int nodata) {
+                          std::optional<std::size_t> min_particles, std::optional<std::size_t> max_particles,
+                          std::optional<std::size_t> particles, std::optional<double> init_radius_m, std::optional<double> reinit_radius_m,
+                          const std::string& out, bool plots, const std::string& heading, std::optional<double> start_heading_sd_deg, int nodata,
+                          const std::string& profile, std::optional<bool> lock_monitor) {
+    // `trnkit localize`'s start prior: 50 m under ours (a last fix good to metres), the text's 300 m
+    // under the dissertation profile (its own value).
+    if (!init_radius_m && profile == "ours") init_radius_m = 50.0;
     if (odometry != "recorded" && odometry != "visual") throw pyb::value_error("odometry: 'recorded' (the folder's SvoX/SvoY) or 'visual', got '" + odometry + "'");
     return naming_keywords([&] {
         localize::AirInputOptions io;
@@ -235,7 +251,8 @@ pyb::dict localize_flight(const std::string& dataset, const std::string& map, co
         spec.rate_hz = rate_hz;
         spec.to_latlon = in.to_latlon;
         spec.localizer = make_config(start, start_heading_rad, std::nullopt, max_tilt_deg, template_width, sparse, seed, conversion, sampling,
-                                     min_particles, max_particles, particles, init_radius_m, reinit_radius_m, heading, start_heading_sd_deg);
+                                     min_particles, max_particles, particles, init_radius_m, reinit_radius_m, heading, start_heading_sd_deg, profile,
+                                     lock_monitor);
         if (!backend) throw pyb::type_error("backend: a trnkit.Backend");
         localize::LocalizationResult r;
         {
@@ -277,12 +294,15 @@ Same inputs, same seed: the same estimates as `trnkit localize`, bit for bit.)")
                           std::pair<double, double> start,
                           std::optional<double> start_heading_rad, std::optional<double> camera_hfov_deg, double max_tilt_deg,
                           int template_width, double sparse, std::uint64_t seed, const std::string& conversion, const std::string& sampling,
-                          std::size_t min_particles, std::size_t max_particles, std::size_t particles, double init_radius_m,
-                          double reinit_radius_m, const std::string& heading, std::optional<double> start_heading_sd_deg) {
+                          std::optional<std::size_t> min_particles, std::optional<std::size_t> max_particles,
+                          std::optional<std::size_t> particles, std::optional<double> init_radius_m, std::optional<double> reinit_radius_m,
+                          const std::string& heading, std::optional<double> start_heading_sd_deg, const std::string& profile,
+                          std::optional<bool> lock_monitor) {
                  auto l = std::make_shared<PyLocalizer>();
                  const localize::LocalizerConfig c =
                      make_config(start, start_heading_rad, camera_hfov_deg, max_tilt_deg, template_width, sparse, seed, conversion, sampling,
-                                 min_particles, max_particles, particles, init_radius_m, reinit_radius_m, heading, start_heading_sd_deg);
+                                 min_particles, max_particles, particles, init_radius_m, reinit_radius_m, heading, start_heading_sd_deg, profile,
+                                 lock_monitor);
                  const BorrowedGray view = gray_view(map, "map");
                  const std::optional<BorrowedGray> mask =
                      valid.is_none() ? std::nullopt : std::optional<BorrowedGray>(gray_view(valid, "valid"));
@@ -301,8 +321,9 @@ Same inputs, same seed: the same estimates as `trnkit localize`, bit for bit.)")
              }),
              "map"_a, "metres_per_pixel"_a, "backend"_a, pyb::kw_only(), "valid"_a = pyb::none(), "start"_a, "start_heading_rad"_a = pyb::none(),
              "camera_hfov_deg"_a = pyb::none(), "max_tilt_deg"_a = 10.0, "template_width"_a = 160, "sparse"_a = 1.0, "seed"_a = 1,
-             "conversion"_a = "logistic:0.2", "sampling"_a = "kld", "min_particles"_a = 100, "max_particles"_a = 2000, "particles"_a = 1000,
-             "init_radius_m"_a = 300.0, "reinit_radius_m"_a = 300.0, "heading"_a = "compass", "start_heading_sd_deg"_a = pyb::none(),
+             "conversion"_a = "logistic:0.2", "sampling"_a = "kld", "min_particles"_a = pyb::none(), "max_particles"_a = pyb::none(),
+             "particles"_a = pyb::none(), "init_radius_m"_a = pyb::none(), "reinit_radius_m"_a = pyb::none(), "heading"_a = "compass",
+             "start_heading_sd_deg"_a = pyb::none(), "profile"_a = "ours", "lock_monitor"_a = pyb::none(),
              R"(map: 2-D uint8 array; metres_per_pixel: its resolution; backend: a trnkit.Backend (python/trnkit/_localize.py
 also takes a spec string and then owns the backend).
 start: (x, y) map pixels, the last known position. start_heading_rad: centre of the initial headings
@@ -352,9 +373,9 @@ altitude_agl_m, attitude).)");
     m.def("_localize", &localize_flight, pyb::kw_only(), "dataset"_a, "map"_a = "", "backend"_a, "metres_per_pixel"_a = 0.0,
           "hfov_deg"_a = 0.0, "fps"_a = 0.0, "rate_hz"_a = 5.0, "start"_a = pyb::none(), "start_heading_rad"_a = pyb::none(),
           "odometry"_a = "recorded", "max_tilt_deg"_a = 10.0, "template_width"_a = 160, "sparse"_a = 1.0, "seed"_a = 1,
-          "conversion"_a = "logistic:0.2", "sampling"_a = "kld", "min_particles"_a = 100, "max_particles"_a = 2000, "particles"_a = 1000,
-          "init_radius_m"_a = 50.0, "reinit_radius_m"_a = 300.0, "out"_a = "", "plots"_a = false, "heading"_a = "compass",
-          "start_heading_sd_deg"_a = pyb::none(), "nodata"_a = -1,
+          "conversion"_a = "logistic:0.2", "sampling"_a = "kld", "min_particles"_a = pyb::none(), "max_particles"_a = pyb::none(),
+          "particles"_a = pyb::none(), "init_radius_m"_a = pyb::none(), "reinit_radius_m"_a = pyb::none(), "out"_a = "", "plots"_a = false,
+          "heading"_a = "compass", "start_heading_sd_deg"_a = pyb::none(), "nodata"_a = -1, "profile"_a = "ours", "lock_monitor"_a = pyb::none(),
           R"(Localizes a whole AIR folder, as `trnkit localize` does (same defaults: a 50 m start prior).
 map: the map image (default: the one flight.json names); metres_per_pixel, hfov_deg, fps: when
 flight.json does not say (0: not given); start: (x, y) map pixels (None: the first row's truth);

@@ -160,9 +160,11 @@ class Localizer(AbstractContextManager["Localizer"]):
                  valid: npt.NDArray[np.uint8] | None = None, start: tuple[float, float],
                  start_heading_rad: float | None = None, camera_hfov_deg: float | None = None, max_tilt_deg: float = 10.0,
                  template_width: int = 160, sparse: float = 1.0, seed: int = 1, conversion: str = "logistic:0.2",
-                 sampling: Literal["kld", "importance", "rejection"] = "kld", min_particles: int = 100, max_particles: int = 2000,
-                 particles: int = 1000, init_radius_m: float = 300.0, reinit_radius_m: float = 300.0,
-                 heading: Literal["compass", "none"] = "compass", start_heading_sd_deg: float | None = None) -> None: ...
+                 sampling: Literal["kld", "importance", "rejection"] = "kld", min_particles: int | None = None,
+                 max_particles: int | None = None, particles: int | None = None, init_radius_m: float | None = None,
+                 reinit_radius_m: float | None = None, heading: Literal["compass", "none"] = "compass",
+                 start_heading_sd_deg: float | None = None, profile: Literal["ours", "dissertation"] = "ours",
+                 lock_monitor: bool | None = None) -> None: ...
     def step(self, frame: npt.NDArray[np.uint8] | None = None, *, odometry: tuple[float, float] | None = None,
              heading_rad: float | None = None, altitude_agl_m: float | None = None, scale: float | None = None,
              attitude: tuple[float, float] | None = None, odometry_yaw_rad: float | None = None) -> Estimate: ...
@@ -174,7 +176,9 @@ def read_air_folder(folder: str | os.PathLike[str]) -> list[dict[str, Any]]: ...
 def localize(*, dataset: str, map: str = "", backend: Backend | str = "cpu", metres_per_pixel: float = 0.0, hfov_deg: float = 0.0,
              fps: float = 0.0, rate_hz: float = 5.0, start: tuple[float, float] | None = None, start_heading_rad: float | None = None,
              odometry: Literal["recorded", "visual"] = "recorded", max_tilt_deg: float = 10.0, template_width: int = 160,
-             sparse: float = 1.0, seed: int = 1, conversion: str = "logistic:0.2", sampling: str = "kld", min_particles: int = 100,
-             max_particles: int = 2000, particles: int = 1000, init_radius_m: float = 50.0, reinit_radius_m: float = 300.0,
+             sparse: float = 1.0, seed: int = 1, conversion: str = "logistic:0.2", sampling: str = "kld",
+             min_particles: int | None = None, max_particles: int | None = None, particles: int | None = None,
+             init_radius_m: float | None = None, reinit_radius_m: float | None = None,
              out: str = "", plots: bool = False, heading: Literal["compass", "none"] = "compass",
-             start_heading_sd_deg: float | None = None, nodata: int | None = None) -> dict[str, Any]: ...
+             start_heading_sd_deg: float | None = None, nodata: int | None = None,
+             profile: Literal["ours", "dissertation"] = "ours", lock_monitor: bool | None = None) -> dict[str, Any]: ...

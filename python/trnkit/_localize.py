@@ -27,10 +27,13 @@ class Localizer:
     max_tilt_deg: frames tilted further from nadir are not scored. template_width: frames are
     downscaled to this width before scoring (0: full). sparse: share of template pixels scored.
     seed: same seed, same run. conversion ("logistic:0.2", "linear", "softmax", "rectifying:D"),
-    sampling ("kld", "importance", "rejection"), min_particles / max_particles (KLD bounds; the
-    initial set is max_particles), particles (fixed count of importance / rejection sampling),
-    init_radius_m (initial particles uniform within this radius of start), reinit_radius_m (after a
-    collapse): the filter's settings (trn/filter/particle_filter.hpp). heading: "compass" (each
+    sampling ("kld", "importance", "rejection"), min_particles / max_particles (KLD bounds; under
+    "ours" the initial set is max_particles), particles (fixed count of importance / rejection
+    sampling), init_radius_m (initial particles uniform within this radius of start),
+    reinit_radius_m (after a collapse): the filter's settings (trn/filter/particle_filter.hpp); None
+    takes the profile's value (ours: 100, 2000, 1000, 300 m, 300 m). profile: "ours" or
+    "dissertation", the filter's reading of the text (docs/PROFILES.md: KLD quantile, initial set,
+    motion model ...); lock_monitor: True / False, or None for the profile's (ours on, dissertation off). heading: "compass" (each
     step's heading_rad sets the particles' yaw) or "none" (no compass: yaw is estimated; the prior is
     uniform with start_heading_rad None, else Gaussian around it with start_heading_sd_deg degrees;
     each step then gives odometry=(right_m, forward_m) in the previous frame's axes and
@@ -40,8 +43,8 @@ class Localizer:
 
     def __init__(self, map, metres_per_pixel, backend="cpu", *, valid=None, start, start_heading_rad=None, camera_hfov_deg=None,
                  max_tilt_deg=10.0, template_width=160, sparse=1.0, seed=1, conversion="logistic:0.2", sampling="kld",
-                 min_particles=100, max_particles=2000, particles=1000, init_radius_m=300.0, reinit_radius_m=300.0, heading="compass",
-                 start_heading_sd_deg=None):
+                 min_particles=None, max_particles=None, particles=None, init_radius_m=None, reinit_radius_m=None, heading="compass",
+                 start_heading_sd_deg=None, profile="ours", lock_monitor=None):
         if start_heading_rad is not None and abs(start_heading_rad) > 2 * math.pi:
             warnings.warn(f"start_heading_rad={start_heading_rad} is beyond 2 pi: degrees? (math.radians converts)", YawUnitWarning,
                           stacklevel=2)
@@ -52,7 +55,8 @@ class Localizer:
             map, metres_per_pixel, backend, valid=valid, start=tuple(start), start_heading_rad=start_heading_rad, camera_hfov_deg=camera_hfov_deg,
             max_tilt_deg=max_tilt_deg, template_width=template_width, sparse=sparse, seed=seed, conversion=conversion,
             sampling=sampling, min_particles=min_particles, max_particles=max_particles, particles=particles,
-            init_radius_m=init_radius_m, reinit_radius_m=reinit_radius_m, heading=heading, start_heading_sd_deg=start_heading_sd_deg)
+            init_radius_m=init_radius_m, reinit_radius_m=reinit_radius_m, heading=heading, start_heading_sd_deg=start_heading_sd_deg,
+            profile=profile, lock_monitor=lock_monitor)
 
     def step(self, frame=None, *, odometry=None, heading_rad=None, altitude_agl_m=None, scale=None, attitude=None,
              odometry_yaw_rad=None):
@@ -116,9 +120,11 @@ def read_air_folder(folder):
 
 def localize(*, dataset, map="", backend="cpu", metres_per_pixel=0.0, hfov_deg=0.0, fps=0.0, rate_hz=5.0, start=None,
              start_heading_rad=None, odometry="recorded", max_tilt_deg=10.0, template_width=160, sparse=1.0, seed=1,
-             conversion="logistic:0.2", sampling="kld", min_particles=100, max_particles=2000, particles=1000, init_radius_m=50.0,
-             reinit_radius_m=300.0, out="", plots=False, heading="compass", start_heading_sd_deg=None, nodata=None):
-    """Localizes a whole AIR folder as `trnkit localize` does (same defaults: a 50 m start prior).
+             conversion="logistic:0.2", sampling="kld", min_particles=None, max_particles=None, particles=None, init_radius_m=None,
+             reinit_radius_m=None, out="", plots=False, heading="compass", start_heading_sd_deg=None, nodata=None, profile="ours",
+             lock_monitor=None):
+    """Localizes a whole AIR folder as `trnkit localize` does (same defaults: a 50 m start prior
+    under profile "ours", the text's 300 m under "dissertation").
 
     dataset: the AIR folder; map: the map image (default: the one flight.json names); backend: a
     trnkit.Backend or a spec string (then made for this flight and closed after it);
@@ -144,7 +150,7 @@ def localize(*, dataset, map="", backend="cpu", metres_per_pixel=0.0, hfov_deg=0
                                  conversion=conversion, sampling=sampling, min_particles=min_particles, max_particles=max_particles,
                                  particles=particles, init_radius_m=init_radius_m, reinit_radius_m=reinit_radius_m, out=out,
                                  plots=plots, heading=heading, start_heading_sd_deg=start_heading_sd_deg,
-                                 nodata=-1 if nodata is None else nodata)
+                                 nodata=-1 if nodata is None else nodata, profile=profile, lock_monitor=lock_monitor)
     finally:
         if own is not None:
             own.close()

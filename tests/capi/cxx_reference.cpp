@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "trn/energy/run_report.hpp"
+#include "trn/localize/localizer.hpp"
 #include "trn/registry.hpp"
 
 namespace {
@@ -82,6 +83,25 @@ int ref_energy(const char* log_path, const char* markers_path, int align_auto, s
         }
         *idle_w = r.idle_w;
         *offset_s = r.alignment.mapping.offset_s;
+    });
+}
+
+int ref_dissertation_localizer(const uint8_t* map, int width, int height, ptrdiff_t stride, double metres_per_pixel, double start_x,
+                               double start_y, double init_radius_m, const uint8_t* frame, int frame_width, int frame_height,
+                               ptrdiff_t frame_stride, double scale, double heading_rad, int steps, double* x, double* y, size_t* particles,
+                               char* error, size_t error_size) {
+    return reference(error, error_size, [&] {
+        auto backend = trn::default_registry().create("cpu");
+        trn::localize::LocalizerConfig c = trn::localize::dissertation_profile();
+        c.start_x = start_x, c.start_y = start_y, c.start_heading_rad = heading_rad, c.filter.init_radius_m = init_radius_m;
+        trn::localize::Localizer l({map, width, height, stride}, metres_per_pixel, *backend, c);
+        trn::localize::Observation o;
+        o.frame = {frame, frame_width, frame_height, frame_stride};
+        o.map_px_per_camera_px = scale, o.heading_rad = heading_rad, o.odometry_east_m = 1, o.odometry_north_m = 0;
+        for (int i = 0; i < steps; ++i) {
+            const trn::localize::Estimate e = l.step(o);
+            *x = e.x, *y = e.y, *particles = e.particles;
+        }
     });
 }
 

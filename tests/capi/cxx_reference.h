@@ -29,6 +29,14 @@ int ref_energy(const char* log_path, const char* markers_path, int align_auto, s
                double* net_j, double* error_j, size_t* samples, int* usable, double* idle_w, double* offset_s, char* error,
                size_t error_size);
 
+/* Steps trn::localize::Localizer, built with localize::dissertation_profile() and the start and
+ * radius given, `steps` times on the same frame (scale in map pixels per frame pixel, heading in
+ * radians, odometry 1 m east a step); the last estimate's x, y and particle count. */
+int ref_dissertation_localizer(const uint8_t* map, int width, int height, ptrdiff_t stride, double metres_per_pixel, double start_x,
+                               double start_y, double init_radius_m, const uint8_t* frame, int frame_width, int frame_height,
+                               ptrdiff_t frame_stride, double scale, double heading_rad, int steps, double* x, double* y, size_t* particles,
+                               char* error, size_t error_size);
+
 #ifdef __cplusplus
 }
 #endif

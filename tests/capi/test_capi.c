@@ -501,6 +501,47 @@ static void test_localizer(void) {
     CHECK_OK(trn_localizer_step(loc, &o, &e));
     CHECK(fabs(e.yaw - 1.5) < 0.02 && e.yaw_sd < 0.1, "Gaussian yaw prior turned by 0.5 rad: yaw %g sd %g", e.yaw, e.yaw_sd);
     trn_localizer_destroy(loc);
+    /* Profiles (issue 27): the dissertation's defaults; an unknown name refused naming both and
+     * leaving *out alone; its steps equal the C++ Localizer's with localize::dissertation_profile()
+     * bit for bit, and differ from ours; its lock monitor is off, ours on. */
+    {
+        trn_localizer_config d = trn_localizer_config_default(), kept;
+        trn_observation f = trn_observation_default();
+        CHECK(strcmp(d.profile, "ours") == 0 && d.lock_monitor == 1, "ours: profile %s lock monitor %d", d.profile, d.lock_monitor);
+        CHECK_OK(trn_localizer_config_for_profile("dissertation", &d));
+        CHECK(strcmp(d.profile, "dissertation") == 0 && d.lock_monitor == 0 && d.max_particles == 100000 && d.particles == 500,
+              "dissertation: profile %s lock monitor %d max %zu particles %zu", d.profile, d.lock_monitor, d.max_particles, d.particles);
+        kept = d;
+        CHECK_FAILS(trn_localizer_config_for_profile("literal", &d), TRN_ERR_INVALID_ARGUMENT, "dissertation");
+        CHECK(memcmp(&kept, &d, sizeof d) == 0, "*out changed by a refused profile");
+        d.profile = "literal";
+        CHECK_FAILS(trn_localizer_create(cpu, map_pixels, MAP_W, MAP_H, MAP_STRIDE, 0.5, &d, &loc), TRN_ERR_INVALID_ARGUMENT, "config->profile");
+        d.profile = "dissertation";
+        d.start_x = MAP_W / 2.0, d.start_y = MAP_H / 2.0, d.start_heading_rad = 0, d.init_radius_m = 20;
+        f.frame = map_pixels, f.width = T_W, f.height = T_H, f.stride = MAP_STRIDE, f.map_px_per_camera_px = 1, f.heading_rad = 0;
+        f.odometry_east_m = 1, f.odometry_north_m = 0;
+        {
+            double rx = NAN, ry = NAN, dx = NAN, dy = NAN;
+            size_t rn = 0;
+            char error[512] = "";
+            CHECK(ref_dissertation_localizer(map_pixels, MAP_W, MAP_H, MAP_STRIDE, 0.5, d.start_x, d.start_y, 20, map_pixels, T_W, T_H,
+                                             MAP_STRIDE, 1, 0, 3, &rx, &ry, &rn, error, sizeof error) == 0, "C++ reference: %s", error);
+            CHECK_OK(trn_localizer_create(cpu, map_pixels, MAP_W, MAP_H, MAP_STRIDE, 0.5, &d, &loc));
+            for (int i = 0; i < 3; ++i) CHECK_OK(trn_localizer_step(loc, &f, &e));
+            CHECK(e.x == rx && e.y == ry && e.particles == rn && strcmp(e.lock_state, "none") == 0,
+                  "dissertation via C: (%.17g, %.17g) %zu particles, lock %s; C++: (%.17g, %.17g) %zu", e.x, e.y, e.particles, e.lock_state,
+                  rx, ry, rn);
+            dx = e.x, dy = e.y;
+            trn_localizer_destroy(loc);
+            d = trn_localizer_config_default();
+            d.start_x = MAP_W / 2.0, d.start_y = MAP_H / 2.0, d.start_heading_rad = 0, d.init_radius_m = 20;
+            CHECK_OK(trn_localizer_create(cpu, map_pixels, MAP_W, MAP_H, MAP_STRIDE, 0.5, &d, &loc));
+            for (int i = 0; i < 3; ++i) CHECK_OK(trn_localizer_step(loc, &f, &e));
+            CHECK((e.x != dx || e.y != dy) && strcmp(e.lock_state, "none") != 0, "ours: (%g, %g), lock %s", e.x, e.y, e.lock_state);
+            trn_localizer_destroy(loc);
+            loc = NULL;
+        }
+    }
     trn_localizer_destroy(NULL);
     trn_backend_destroy(cpu); /* the localizer kept it alive until here */
     {

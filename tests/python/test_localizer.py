@@ -86,6 +86,28 @@ def test_compassless_localizer_row_by_row_equals_localize(flight):
     assert s["final_yaw_sd_deg"] < 10 and s["mean_yaw_error_deg"] < 10 and s["converged_from_frame"] is not None
 
 
+def test_dissertation_profile_row_by_row_equals_localize(flight):
+    """profile="dissertation" (issue 27): the Localizer fed row by row gives
+    trnkit.localize(profile="dissertation")'s estimates bit for bit; its lock monitor is off (on
+    with lock_monitor=True), and it is not ours' run."""
+    air, ortho = flight
+    whole = trnkit.localize(dataset=air, map=ortho, backend="cpu", rate_hz=0.5, profile="dissertation", max_particles=3000)
+    ours = trnkit.localize(dataset=air, map=ortho, backend="cpu", rate_hz=0.5, max_particles=3000, init_radius_m=300)
+    rows = trnkit.read_air_folder(air)
+    with trnkit.Localizer(trnkit.load_gray(ortho), whole["metres_per_pixel"], "cpu", start=rows[0]["truth"], camera_hfov_deg=60,
+                          max_particles=3000, profile="dissertation") as loc:
+        online = [loc.step(**row["step"]) for row in rows]
+    for key in ("x", "y"):
+        np.testing.assert_array_equal(np.array([e[key] for e in online]), whole["rows"]["estimate_" + key])
+    assert {e["lock_state"] for e in online} == {"none"}
+    assert not np.array_equal(whole["rows"]["estimate_x"], ours["rows"]["estimate_x"])
+    with trnkit.Localizer(trnkit.load_gray(ortho), whole["metres_per_pixel"], "cpu", start=rows[0]["truth"], camera_hfov_deg=60,
+                          max_particles=3000, profile="dissertation", lock_monitor=True) as loc:
+        assert {loc.step(**row["step"])["lock_state"] for row in rows} != {"none"}
+    with pytest.raises(ValueError, match=r"^profile: .*dissertation"):
+        trnkit.Localizer(np.zeros((64, 64), np.uint8), 0.5, "cpu", start=(32, 32), profile="literal")
+
+
 def test_errors_name_the_keyword(tmp_path):
     with pytest.raises(ValueError, match=r"^dataset: .*not a folder"):
         trnkit.localize(dataset=str(tmp_path / "absent"))

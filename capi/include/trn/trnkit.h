@@ -228,9 +228,18 @@ typedef struct trn_localizer_config {
      * turned by observation.odometry_yaw_rad, the odometry then in the previous frame's axes. */
     const char* heading;
     double start_heading_sd_deg; /* spread of the initial headings / yaws, degrees (NaN: 2, the motion model's eps_rot) */
+    /* The filter's reading of the dissertation (docs/PROFILES.md): "ours" (NULL) or "dissertation",
+     * which also sets what this struct has no field for (KLD quantile, motion model, its noise). Take
+     * the defaults from trn_localizer_config_for_profile, then change fields: its values are the
+     * profile's, so a field left alone keeps the profile's value. */
+    const char* profile;
+    int lock_monitor;            /* nonzero: the wrong-lock monitor is on (ours: 1; dissertation: 0) */
 } trn_localizer_config;
-/* The C++ defaults; start_x, start_y NaN (to be set). */
+/* The C++ defaults (profile "ours"); start_x, start_y NaN (to be set). */
 TRN_C_API trn_localizer_config trn_localizer_config_default(void);
+/* The defaults of a profile ("ours", "dissertation"; NULL: "ours"), with `profile` set to it. An
+ * unknown name is TRN_INVALID_ARGUMENT naming both, and *out is left as it was. */
+TRN_C_API trn_status trn_localizer_config_for_profile(const char* profile, trn_localizer_config* out);
 
 typedef struct trn_observation {
     const uint8_t* frame;        /* grey camera frame as taken; NULL: no frame this step */
