@@ -168,7 +168,7 @@ void open_output_folder(const std::string& folder, const std::string& command, b
         fs::create_directories(folder, ec);
         if (ec) throw Error(option + " " + folder + ": cannot create folder (" + ec.message() + ")");
     }
-    const bool own = state == FolderState::OwnOutput;
+    bool own = state == FolderState::OwnOutput;
     Marker m = read_marker(folder);
     // An older trnkit's marker lists nothing: its files may still be replaced by name (never removed).
     bool upgraded = own && (!m.listed || m.upgraded);
@@ -177,6 +177,9 @@ void open_output_folder(const std::string& folder, const std::string& command, b
         while (::flock(fd, LOCK_EX) != 0 && errno == EINTR) {
         }
         m = read_marker(folder);  // an earlier run may have finished while we waited
+        // A run started at the same time may have created the folder we found absent: once it has
+        // finished, its marker makes the folder this command's own output, to be replaced.
+        if (state == FolderState::Absent) own = check_output_folder(folder, command, force, option) == FolderState::OwnOutput;
         if (own && m.listed) {
             // Only the files the previous run listed, never a folder, and a link only as the link.
             for (const std::string& n : m.names) {
