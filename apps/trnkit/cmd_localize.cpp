@@ -48,7 +48,7 @@ struct LocalizeArgs {
     // Start prior. 50 m, not the dissertation's 300 m: localize hands over from a GNSS fix that was
     // good until it was lost, so the start is known to metres; 300 m mostly costs mean error.
     // --profile dissertation takes the text's 300 m unless --init-radius-m is given.
-    double init_radius_m = 50, reinit_radius_m = 300, heading_sd_deg = NAN, start_heading_deg = NAN;
+    double init_radius_m = localize::kHandoverInitRadiusM, reinit_radius_m = 300, heading_sd_deg = NAN, start_heading_deg = NAN;
     std::string start, start_latlon;  // "X,Y" map px / "LAT,LON" degrees, checked at parse time
     double start_from_gps_m = 0;      // > 0: start at the first row's GPS fix within this radius (replaces --init-radius-m)
     bool no_plots = false, force = false;

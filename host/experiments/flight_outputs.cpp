@@ -67,7 +67,9 @@ double out_of_date_loss_percent(const std::vector<Json>& outputs, const std::str
 
 namespace {
 
+// Of the finite values (a job stores null for a non-finite number; NaN would break the sort).
 double median(std::vector<double> v) {
+    std::erase_if(v, [](double x) { return !std::isfinite(x); });
     if (v.empty()) return NAN;
     std::sort(v.begin(), v.end());
     const std::size_t n = v.size();

@@ -113,6 +113,9 @@ std::string map_years(const Json& config) {
     return years;
 }
 
+// "4" when every count is 4, else "2-4".
+std::string count_range(int fewest, int most) { return fewest == most ? std::to_string(most) : std::to_string(fewest) + "-" + std::to_string(most); }
+
 // What a cell of Tables 3.7-3.11 is the mean of: the configuration's runs x map years when every
 // cell is whole, else the flights the cells actually hold (a partial merge), counted.
 std::string flights_per_cell(const std::vector<Json>& o, const Json& config) {
@@ -128,8 +131,7 @@ std::string flights_per_cell(const std::vector<Json>& o, const Json& config) {
     for (const auto& [cell, n] : count) fewest = std::min(fewest, n), most = std::max(most, n);
     const std::string design = std::to_string(runs) + " runs x " + std::to_string(ages) + " map years (" + map_years(config) + ")";
     if (fewest == runs * ages) return design;
-    return (fewest == most ? std::to_string(fewest) : std::to_string(fewest) + "-" + std::to_string(most)) + " of the " +
-           std::to_string(runs * ages) + " flights of " + design;
+    return count_range(fewest, most) + " of the " + std::to_string(runs * ages) + " flights of " + design;
 }
 
 // Table 3.12 and Fig 3.7 from every function of the configuration over the map ages.
@@ -312,8 +314,7 @@ public:
             const int fewest = *std::min_element(n.begin(), n.end()), most = *std::max_element(n.begin(), n.end());
             std::vector<std::string> avg{most == static_cast<int>(presets.size()) && fewest == most
                                              ? std::string("Average")
-                                             : "Average over the " + (fewest == most ? std::to_string(most) : std::to_string(fewest) + "-" + std::to_string(most)) +
-                                                   " scenario(s) with flights (diss. over the same)"};
+                                             : "Average over the " + count_range(fewest, most) + " scenario(s) with flights (diss. over the same)"};
             for (int k = 0; k < 3; ++k) {
                 avg.push_back(which ? fmt(sum[k] / n[k]) : percent(sum[k] / n[k]));
                 avg.push_back(which ? fmt(pub[k] / n[k]) : percent(pub[k] / n[k]));

@@ -239,7 +239,7 @@ pyb::dict localize_flight(const std::string& dataset, const std::string& map, co
                           const std::string& profile, std::optional<bool> lock_monitor) {
     // `trnkit localize`'s start prior: 50 m under ours (a last fix good to metres), the text's 300 m
     // under the dissertation profile (its own value).
-    if (!init_radius_m && profile == "ours") init_radius_m = 50.0;
+    if (!init_radius_m && profile == "ours") init_radius_m = localize::kHandoverInitRadiusM;
     if (odometry != "recorded" && odometry != "visual") throw pyb::value_error("odometry: 'recorded' (the folder's SvoX/SvoY) or 'visual', got '" + odometry + "'");
     return naming_keywords([&] {
         localize::AirInputOptions io;

@@ -43,6 +43,11 @@ inline LocalizerConfig localizer_profile(filter::Profile profile) {
 }
 inline LocalizerConfig dissertation_profile() { return localizer_profile(filter::Profile::Dissertation); }
 
+// The start prior of a recorded flight's localization (`trnkit localize`, Python's localize())
+// under our profile: a handover after GNSS loss, whose last fix is good to metres. The dissertation
+// profile keeps the text's 300 m (FilterConfig::init_radius_m).
+inline constexpr double kHandoverInitRadiusM = 50;
+
 // One camera frame and what the other sensors said since the previous one.
 struct Observation {
     GrayView frame;                                       // grey, as taken; empty: no image this step
