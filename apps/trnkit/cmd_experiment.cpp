@@ -50,17 +50,22 @@ void add_experiment_command(CLI::App& app) {
                 return {};
             },
             "i/n"));
-    cmd->add_option("--job", a->job, "Run only this job (ids from --list-jobs)");
+    cmd->add_option("--job", a->jobs,
+                    "Run only this job (ids from --list-jobs); several: --job A,B or --job A --job B, run one after another in "
+                    "one process, which builds the maps they share once (--list-jobs=keys)")
+        ->delimiter(',');
     auto list_mode = std::make_shared<std::string>();
     cmd->add_flag("--list-jobs", *list_mode,
                   "Print one command per job, then the merge command; --list-jobs=ids: only the job ids, one a line (what "
-                  "scripts/experiment-parallel and experiment-slurm pass to --job)")
-        ->option_text("[=ids]")
+                  "scripts/experiment-parallel and experiment-slurm pass to --job); --list-jobs=keys: each id, a space and its "
+                  "inputs key (jobs of one key share their maps; the id itself when it shares nothing)")
+        ->option_text("[=ids|keys]")
         ->check(CLI::Validator(
             [](std::string& value) -> std::string {  // a bare flag reads "true"
-                return value == "true" || value == "ids" ? std::string() : "takes no value or =ids, not '" + value + "'";
+                return value == "true" || value == "ids" || value == "keys" ? std::string()
+                                                                            : "takes no value, =ids or =keys, not '" + value + "'";
             },
-            "[=ids]"));
+            "[=ids|keys]"));
     cmd->add_flag("--merge", a->merge_only, "Only build the tables from finished job outputs");
     cmd->add_flag("--prepare", a->prepare_only,
                   "Only create the output folder and check the finished jobs against these options, before a dispatcher "
@@ -71,7 +76,8 @@ void add_experiment_command(CLI::App& app) {
     cmd->add_flag("--force", a->force, "Write into a non-empty folder that is not an earlier output of this study");
     cmd->callback([a, list_mode] {
         a->list_jobs = !list_mode->empty();
-        a->list_ids_only = *list_mode == "ids";
+        a->list_ids_only = *list_mode == "ids" || *list_mode == "keys";
+        a->list_keys = *list_mode == "keys";
         a->progress = true;
         a->backend_options = backend_options_from_environment();
         if (const char* dir = std::getenv("TRN_SHARED_DATA")) a->shared_data = dir;  // the real-map jobs

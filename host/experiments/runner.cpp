@@ -170,8 +170,12 @@ std::size_t run_experiment(const ExperimentOptions& o) {
     const filter::Profile profile = filter::parse_profile(config.at("profile").get<std::string>());
     const std::vector<Json> jobs = study->jobs(config);
     std::set<std::string> ids;
-    for (const Json& j : jobs)
-        if (!ids.insert(j.at("id").get<std::string>()).second) throw Error("experiment: duplicate job id " + j.at("id").dump());
+    for (const Json& j : jobs) {
+        const std::string id = j.at("id").get<std::string>();
+        // Ids travel through dispatchers as one word and in comma lists (--job a,b): a study bug otherwise.
+        if (id.empty() || id.find_first_of(", \t\n") != std::string::npos) throw Error("experiment: job id " + j.at("id").dump() + " has a comma or blank");
+        if (!ids.insert(id).second) throw Error("experiment: duplicate job id " + j.at("id").dump());
+    }
 
     const std::string out = o.out.empty() ? "experiments/" + o.study + (profile == filter::Profile::Dissertation ? "-dissertation" : "") +
                                                 (o.quick ? "-quick" : "")
@@ -191,8 +195,18 @@ std::size_t run_experiment(const ExperimentOptions& o) {
     auto stored = [&](const std::string& id) { return o.resume && (store.has(id) || shared.has(id)); };
     if (o.list_jobs && o.list_ids_only) {  // for scripts: each line is one --job argument, never shell text
         std::size_t listed = 0;
-        for (const Json& j : jobs)
-            if (!stored(j.at("id").get<std::string>())) std::cout << j.at("id").get<std::string>() << "\n", ++listed;
+        for (const Json& j : jobs) {
+            const std::string id = j.at("id").get<std::string>();
+            if (stored(id)) continue;
+            std::cout << id;
+            if (o.list_keys) {
+                const std::string key = study->inputs_key(j);
+                if (key.find_first_of(" \t\n") != std::string::npos) throw Error("experiment: inputs key '" + key + "' of " + id + " has a blank");
+                std::cout << " " << (key.empty() ? id : key);
+            }
+            std::cout << "\n";
+            ++listed;
+        }
         return listed;
     }
     if (o.list_jobs) {
@@ -200,7 +214,9 @@ std::size_t run_experiment(const ExperimentOptions& o) {
         std::cout << command_prefix(o, out) << " --merge\n";
         return jobs.size();
     }
-    if (!o.job.empty() && !ids.count(o.job)) throw Error("experiment: `job` " + o.job + ": no such job in " + o.study + " (see `list_jobs`)");
+    for (const std::string& id : o.jobs)
+        if (!ids.count(id)) throw Error("experiment: `job` " + io::quote_input(id) + ": no such job in " + o.study + " (see `list_jobs`)");
+    const std::set<std::string> chosen(o.jobs.begin(), o.jobs.end());
     const Shard shard = parse_shard(o.shard);  // checked before the output folder is touched
 
     // Every option checked: now the folder (this study's earlier output resumes; others are refused).
@@ -232,7 +248,7 @@ std::size_t run_experiment(const ExperimentOptions& o) {
     if (!o.merge_only) {
         std::vector<const Json*> todo;
         for (std::size_t i = shard.index; i < jobs.size(); i += shard.count)
-            if ((o.job.empty() || jobs[i].at("id") == o.job) && !finished(jobs[i])) todo.push_back(&jobs[i]);
+            if ((chosen.empty() || chosen.count(jobs[i].at("id").get<std::string>())) && !finished(jobs[i])) todo.push_back(&jobs[i]);
         if (!todo.empty()) {
             std::unique_ptr<Backend> backend = default_registry().create(o.backend, o.backend_options);
             for (std::size_t k = 0; k < todo.size(); ++k) {

@@ -55,6 +55,10 @@ public:
     // them) names that study: with --resume, that study's default results store counts too, so a
     // flight is flown once for both.
     virtual std::string flights_shared_with() const { return ""; }
+    // Jobs with the same non-empty key build the same inputs (the procedural maps world.hpp caches
+    // per process): run in one process, they build them once. A dispatcher groups by it
+    // (--list-jobs=keys); "" (the default): the job shares nothing worth grouping for.
+    virtual std::string inputs_key(const Json& /*params*/) const { return ""; }
 };
 
 // `orthophoto`: the real map's file (world.hpp: orthophoto_path), "" when absent.

@@ -105,6 +105,9 @@ std::vector<Json> flight_jobs(const Json& c) {
     return out;
 }
 
+// What fly() builds before the filter runs: the preset's world and its map of the job's age.
+std::string flight_maps_key(const std::string& preset, int map_age) { return preset + "-age" + std::to_string(map_age); }
+
 std::string signed_percent(double v) { return (v > 0 ? "+" : "") + percent(v, 1); }
 
 std::string map_years(const Json& config) {
@@ -236,6 +239,7 @@ public:
     Json run_job(const Json& c, const Json& p, JobContext& ctx) const override {
         return fly(c, p.at("preset"), p.at("conversion"), p.at("map_age"), p.at("run"), ctx, false);
     }
+    std::string inputs_key(const Json& p) const override { return flight_maps_key(p.at("preset"), p.at("map_age")); }
     std::string merge(const std::vector<Json>& o, const MergeContext& mc) const override {
         const auto presets = strings(mc.config.at("presets"));
         const std::string per_cell = flights_per_cell(o, mc.config);
@@ -345,6 +349,7 @@ public:
     Json run_job(const Json& c, const Json& p, JobContext& ctx) const override {
         return fly(c, p.at("preset"), p.at("conversion"), p.at("map_age"), p.at("run"), ctx, false);
     }
+    std::string inputs_key(const Json& p) const override { return flight_maps_key(p.at("preset"), p.at("map_age")); }
     std::string merge(const std::vector<Json>& o, const MergeContext& mc) const override {
         return robustness_table(o, mc) + "\n" + claims_table(o, mc, false);
     }
@@ -375,6 +380,7 @@ public:
     Json run_job(const Json& c, const Json& p, JobContext& ctx) const override {
         return fly(c, p.at("preset"), c.at("conversion"), c.at("map_age"), p.at("run"), ctx, ctx.plots && p.at("run") == 0, visual_);
     }
+    std::string inputs_key(const Json& p) const override { return p.at("preset"); }  // one map age for the whole study
     std::string merge(const std::vector<Json>& o, const MergeContext& mc) const override {
         Table t;
         t.title = std::string("Figs 3.8-3.9: DPC-PFL (logistic:0.2) vs ") +

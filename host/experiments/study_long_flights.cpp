@@ -154,6 +154,8 @@ public:
     Json run_job(const Json& c, const Json& p, JobContext& ctx) const override {
         return fly(c, p.at("preset"), c.at("distance_m"), p.at("template_width"), p.at("run"), ctx);
     }
+    // The map is sized to the flight (its seed is the run's), so only the widths of one run share it.
+    std::string inputs_key(const Json& p) const override { return p.at("preset").get<std::string>() + "-" + std::to_string(p.at("run").get<int>()); }
     std::string merge(const std::vector<Json>& o, const MergeContext& mc) const override {
         Table t;
         t.title = "Template width: the same flights scored with downscaled and full-resolution (640 px) templates";

@@ -50,6 +50,7 @@ public:
         return out;
     }
 
+    std::string inputs_key(const Json& p) const override { return p.at("map"); }  // the map pair of study_map_pair
     Json run_job(const Json& c, const Json& p, JobContext& ctx) const override {
         const bool ortho = p.at("map") == "orthophoto";
         const int trial = p.at("trial");

@@ -35,6 +35,7 @@ public:
         return out;
     }
 
+    std::string inputs_key(const Json&) const override { return "forest"; }  // every job: the same 2008 map, 2010 world
     Json run_job(const Json& c, const Json& p, JobContext& ctx) const override {
         const int start = p.at("start");
         const double size_m = 2400;

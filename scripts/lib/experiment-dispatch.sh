@@ -54,18 +54,24 @@ parse_study_arguments() {
   experiment_options+=(--results "$results")
 }
 
-# Sets job_ids (from trnkit itself; with --resume only the jobs the results store does not hold), then creates and marks the output folder and checks finished
-# jobs against these options, so jobs started at once find it ready; the dispatcher's own files go
-# to $out/dispatch/ (created after the folder is marked, so trnkit owns it).
+# Sets job_ids and job_key (id -> inputs key; both from trnkit itself, --list-jobs=keys; with
+# --resume only the jobs the results store does not hold), then creates and marks the output folder
+# and checks finished jobs against these options, so jobs started at once find it ready; the
+# dispatcher's own files go to $out/dispatch/ (created after the folder is marked, so trnkit owns it).
 list_and_prepare() {
-  local ids_text
-  ids_text=$("$trnkit" experiment "$study" "${experiment_options[@]}" --list-jobs=ids) ||
+  local listing id key rest
+  listing=$("$trnkit" experiment "$study" "${experiment_options[@]}" --list-jobs=keys) ||
     die "trnkit experiment $study refused the options (see above)"
-  # shellcheck disable=SC2034  # job_ids and dispatch_dir are for the scripts that source this file
+  # shellcheck disable=SC2034  # job_ids, job_key and dispatch_dir are for the scripts that source this file
   job_ids=()
-  if [[ -n $ids_text ]]; then
-    # shellcheck disable=SC2034
-    mapfile -t job_ids <<<"$ids_text"
+  declare -gA job_key=()
+  if [[ -n $listing ]]; then
+    while read -r id key rest; do
+      [[ -n $id && -n $key && -z $rest ]] || die "trnkit experiment $study --list-jobs=keys: unexpected line '$id $key $rest'"
+      job_ids+=("$id")
+      # shellcheck disable=SC2034
+      job_key[$id]=$key
+    done <<<"$listing"
   elif [[ -z $resume ]]; then
     die "$study: the job list is empty"
   fi

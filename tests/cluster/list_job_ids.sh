@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# --list-jobs=ids prints exactly the ids the command listing passes to --job, one a line; the command
+# --list-jobs=ids prints exactly the ids the command listing passes to --job, one a line (=keys: with
+# their inputs keys); --job A,B runs those two in one process; the command
 # listing quotes an output folder holding shell syntax as one word; --prepare creates and marks the
 # folder, counts the finished jobs and runs none.
 #   list_job_ids.sh TRNKIT
@@ -30,4 +31,16 @@ cmp "$work/ids" "$work/ids_from_commands" || fail "--list-jobs=ids differs from 
 grep -q "0 of $(wc -l <"$work/ids") jobs finished" "$work/prepare.log" || fail "--prepare: $(cat "$work/prepare.log")"
 [[ -f $out/.trnkit-output && -d $out/jobs && -z $(ls -A "$out/jobs") ]] || fail "--prepare did not just create the marked folder"
 ! "$trnkit" experiment sampling --quick --list-jobs=all >/dev/null 2>&1 || fail "--list-jobs=all accepted"
+
+# --list-jobs=keys: the same ids in the same order, each with one word after it (its inputs key).
+"$trnkit" experiment sampling --quick --list-jobs=keys >"$work/keys"
+awk 'NF != 2 { exit 1 } { print $1 }' "$work/keys" | cmp - "$work/ids" || fail "--list-jobs=keys: not 'id key' lines of the same ids"
+# --job A,B runs just those two, in one process; an unknown id among them is refused before anything runs.
+first=$(sed -n 1p "$work/ids") second=$(sed -n 2p "$work/ids")
+"$trnkit" experiment sampling --quick --no-plots --results none --out "$work/two" --job "$first,$second" --no-merge 2>/dev/null || fail "--job A,B failed"
+[[ $(find "$work/two/jobs" -maxdepth 1 -name '*.json' | wc -l) -eq 2 && -f $work/two/jobs/$first.json && -f $work/two/jobs/$second.json ]] ||
+  fail "--job $first,$second did not run exactly those two"
+! "$trnkit" experiment sampling --quick --results none --out "$work/three" --job "$first,no-such-job" --no-merge >"$work/bad" 2>&1 || fail "an unknown id in --job accepted"
+grep -q -- "--job no-such-job: no such job" "$work/bad" || fail "unknown id: $(cat "$work/bad")"
+[[ ! -e $work/three ]] || fail "an unknown id in --job created the output folder"
 echo "ids: $(wc -l <"$work/ids") ids equal the commands' --job arguments"

@@ -28,6 +28,7 @@ if command -v parallel >/dev/null; then
   refused "GNU parallel would replace" "$scripts/experiment-parallel" --trnkit "$trnkit" metrics --quick --out "$work/a{}b"
   refused "refused the options" "$scripts/experiment-parallel" --trnkit "$trnkit" no-such-study --out "$work/a"
   refused "--jobs needs a whole number" "$scripts/experiment-parallel" --jobs 0 metrics --out "$work/a"
+  refused "--group needs a whole number" "$scripts/experiment-parallel" --group 0 metrics --out "$work/a"
   # issue 23: ':::' or '::::' in an option would start a GNU parallel input source (the ids were dropped)
   refused "input-source separator" "$scripts/experiment-parallel" --trnkit "$trnkit" --jobs 1 heading --quick --backend ':::' --out "$work/a"
   refused "input-source separator" "$scripts/experiment-parallel" --trnkit "$trnkit" heading --quick --backend '::::' --out "$work/a"

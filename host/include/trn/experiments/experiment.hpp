@@ -27,7 +27,7 @@ struct ExperimentOptions {
     BackendOptions backend_options;  // how that backend is created
     std::string shared_data;     // folder holding orthophoto.png for the real-map jobs; "" : procedural maps only
     std::string shard = "1/1";   // run jobs i, i+n, i+2n ... (1-based i)
-    std::string job;             // run only the job with this id (what --list-jobs prints)
+    std::vector<std::string> jobs;  // run only the jobs with these ids (what --list-jobs prints); empty: every job
     std::uint64_t seed = 1;
     std::string profile = "ours";  // the filter's settings: ours or dissertation (filter::Profile)
     std::string lock_monitor;      // "on", "off"; "": the profile's (ours on, dissertation off)
@@ -39,6 +39,9 @@ struct ExperimentOptions {
     bool quick = false;          // reduced but meaningful version (CI)
     bool list_jobs = false;      // print one command per job and exit
     bool list_ids_only = false;  // with list_jobs: print only the job ids, one a line (scripts/experiment-*)
+    // With list_ids_only: each id is followed by a space and its inputs key (Study::inputs_key, the
+    // id itself when the job shares nothing): jobs of one key run in one process build their maps once.
+    bool list_keys = false;
     bool merge_only = false;     // only build tables from finished job outputs
     bool prepare_only = false;   // only create/mark the output folder and check finished jobs (before a dispatch)
     bool no_merge = false;       // run jobs only (cluster shards); merge later
