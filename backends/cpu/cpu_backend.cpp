@@ -177,11 +177,13 @@ private:
         const bool inside = patch_inside(map, A, plan);
         const bool vector = inside && use_avx2_;
         if (inside) sums.n = static_cast<std::int64_t>(plan.sample_count()), sums.st = st_, sums.stt = stt_;
-        auto add = [&](const cpu::RowInput& row) {
-            const cpu::RowSums r = vector   ? cpu::sample_row_inside_avx2(pixels, row)
-                                   : inside ? cpu::sample_row_inside(pixels, row)
-                                            : cpu::sample_row_checked(pixels, row);
+        auto accumulate = [&](const cpu::RowSums& r) {
             sums.n += r.n, sums.sj += r.sj, sums.sjj += r.sjj, sums.sjt += r.sjt, sums.st += r.st, sums.stt += r.stt;
+        };
+        auto add = [&](const cpu::RowInput& row) {
+            accumulate(vector   ? cpu::sample_row_inside_avx2(pixels, row)
+                       : inside ? cpu::sample_row_inside(pixels, row)
+                                : cpu::sample_row_checked(pixels, row));
         };
         const std::size_t count = du_.size();
         constexpr int kChunk = 512;  // sparse: samples per call of the row sampler
@@ -202,10 +204,16 @@ private:
             scratch.ay[k] = A.ty + A.c * du_[k];
         }
         if (plan.dense) {
+            // A patch over the map's edge: each row's run of samples inside takes the fast sampler.
+            const bool clip = !inside && !pixels.cell_mask;
             for (int v = 0; v < plan.height; ++v) {
                 const float dv = float(v) - plan.cy;
-                add({scratch.ax.data(), scratch.ay.data(), A.b * dv, A.d * dv, nullptr, nullptr,
-                     plan.quantized.data() + std::size_t(v) * plan.width, plan.width});
+                const cpu::RowInput row{scratch.ax.data(), scratch.ay.data(), A.b * dv, A.d * dv, nullptr, nullptr,
+                                        plan.quantized.data() + std::size_t(v) * plan.width, plan.width};
+                if (clip)
+                    accumulate(cpu::sample_row_clipped(pixels, row, use_avx2_));
+                else
+                    add(row);
             }
         } else {
             for (std::size_t k = 0; k < count; ++k) {

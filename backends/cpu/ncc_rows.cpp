@@ -47,6 +47,25 @@ RowSums sample_row(const MapPixels& m, const RowInput& row) {
 RowSums sample_row_checked(const MapPixels& m, const RowInput& row) { return sample_row<true>(m, row); }
 RowSums sample_row_inside(const MapPixels& m, const RowInput& row) { return sample_row<false>(m, row); }
 
+RowSums sample_row_clipped(const MapPixels& m, const RowInput& row, bool vector) {
+    const float xmax = float(m.width - 1), ymax = float(m.height - 1);
+    auto inside = [&](int k) {  // sample_row_checked's test, on the same rounded position
+        const float px = row.ax[k] + row.bdv, py = row.ay[k] + row.ddv;
+        return px >= 0.0f && py >= 0.0f && px <= xmax && py <= ymax;
+    };
+    int first = 0, end = row.count;
+    while (first < end && !inside(first)) ++first;
+    while (end > first && !inside(end - 1)) --end;
+    RowInput run = row;
+    run.ax += first, run.ay += first, run.t += first, run.count = end - first;
+    RowSums r;
+    if (run.count == 0) return r;
+    r = vector ? sample_row_inside_avx2(m, run) : sample_row_inside(m, run);
+    r.n = run.count;
+    for (int k = 0; k < run.count; ++k) r.st += run.t[k], r.stt += std::int64_t(run.t[k]) * run.t[k];
+    return r;
+}
+
 bool avx2_available() {
 #if defined(__x86_64__) || defined(__i386__)
     return __builtin_cpu_supports("avx2");

@@ -47,6 +47,12 @@ struct RowInput {
 RowSums sample_row_checked(const MapPixels& m, const RowInput& row);
 RowSums sample_row_inside(const MapPixels& m, const RowInput& row);
 
+// A dense row (one bdv, ddv) of a patch that is not all inside, on a map without no-data: the
+// samples inside the map form one run, since px and py are monotonic along a row (each is one
+// rounded affine step of the row's du), so only that run is sampled, by the inside sampler (AVX2
+// when `vector`); the others would add nothing. The same sums as sample_row_checked, n, st, stt included.
+RowSums sample_row_clipped(const MapPixels& m, const RowInput& row, bool vector);
+
 // AVX2 version of sample_row_inside (the same integers; interpolation and products as int16
 // multiply-adds). Only call when avx2_available(); every map the API accepts (< 2^31 pixels) fits
 // its 32-bit gather indices.
