@@ -79,3 +79,25 @@ list_and_prepare() {
   dispatch_dir=$out/dispatch
   mkdir -p -- "$dispatch_dir"
 }
+
+# Sets job_lines from job_ids and job_key: one line per trnkit process, the comma-joined ids of one
+# inputs key, at most $1 of them (in job-list order), lines in the order of their first job, so a
+# batch keeps the job list's balance. A process builds the maps its jobs share once.
+group_job_lines() {
+  local most=$1 id key line
+  local -A open_line=() line_size=()
+  job_lines=()
+  for id in "${job_ids[@]}"; do
+    key=${job_key[$id]}
+    line=${open_line[$key]:-}
+    if [[ -z $line || ${line_size[$line]} -ge $most ]]; then
+      line=${#job_lines[@]}
+      job_lines+=("$id")
+      open_line[$key]=$line
+      line_size[$line]=1
+    else
+      job_lines[line]+=",$id"
+      line_size[$line]=$((line_size[$line] + 1))
+    fi
+  done
+}

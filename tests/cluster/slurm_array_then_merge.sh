@@ -120,10 +120,12 @@ if ((status != 0)); then
   fail "experiment-slurm failed (status $status)"
 fi
 n=$("$trnkit" experiment "$study" --quick --list-jobs=ids | wc -l)
-# MaxArraySize=3 allows indices 1-2 only: the script must put ceil(n/2) jobs into each task.
+# MaxArraySize=3 allows indices 1-2 only: the script must put up to ceil(n/2) jobs into each task
+# (a task runs jobs of one inputs key; the study's two maps have n/2 jobs each).
 per_task=$(((n + 1) / 2))
 tasks=$(((n + per_task - 1) / per_task))
-grep -q "MaxArraySize is 3: $per_task jobs per task" "$work/submit.log" || { cat "$work/submit.log" >&2; fail "jobs per task not raised to fit MaxArraySize"; }
+[[ $("$trnkit" experiment "$study" --quick --list-jobs=keys | awk '{ print $2 }' | sort -u | wc -l) -eq $tasks ]] || fail "expected $tasks inputs keys"
+grep -q "MaxArraySize is 3: up to $per_task jobs per task" "$work/submit.log" || { cat "$work/submit.log" >&2; fail "jobs per task not raised to fit MaxArraySize"; }
 [[ $(find "$out/jobs" -maxdepth 1 -name '*.json' | wc -l) -eq $n ]] || fail "expected $n job outputs"
 [[ $(find "$out/dispatch" -name 'slurm-*_*.log' | wc -l) -eq $tasks ]] || fail "expected $tasks array task logs"
 grep -q "$n jobs in $tasks array tasks" "$work/submit.log" || fail "the submission did not report $tasks tasks"
