@@ -71,6 +71,20 @@ std::vector<Pose> poses_around_centre(int count) {
     return poses;
 }
 
+std::vector<Pose> poses_over_the_edge(int count, const FrameSize& templ) {
+    const cv::Mat& m = bench_map().pixels;
+    const float w = float(m.cols - 1), h = float(m.rows - 1), reach = 0.5f * float(std::min(templ.width, templ.height));
+    std::mt19937 rng(54321);
+    std::uniform_real_distribution<float> along(0.0f, 1.0f), across(-reach, reach), yaw(-0.25f, 0.25f), scale(0.95f, 1.05f);
+    std::vector<Pose> poses(count);
+    for (int i = 0; i < count; ++i) {
+        const float a = along(rng), b = across(rng);
+        const float x[] = {a * w, a * w, b, w + b}, y[] = {b, h + b, a * h, a * h};  // top, bottom, left, right
+        poses[i] = {x[i % 4], y[i % 4], yaw(rng), scale(rng)};
+    }
+    return poses;
+}
+
 SobelFrames frame_set(const FrameSize& size, int count) { return make_frames(size, count); }
 
 SobelFrames cold_frames(const FrameSize& size, std::size_t bytes) {

@@ -25,6 +25,10 @@ cv::Mat template_from_map(const FrameSize& size);
 // `count` poses spread around the template's true pose (+-24 px, +-0.25 rad, scale 0.95..1.05),
 // the way a particle cloud sits around the vehicle; fixed seed, so every backend gets the same.
 std::vector<Pose> poses_around_centre(int count);
+// `count` poses whose patches of `templ` cross the map's edge: centres within half the template
+// of one of the four edges (in turn), yaw and scale as poses_around_centre; fixed seed. A particle cloud near
+// the map's border, or spread wide at the start, has many of these.
+std::vector<Pose> poses_over_the_edge(int count, const FrameSize& templ);
 
 // Frames for Sobel: `count` source images (random bytes) and room for their gradients, laid out
 // one after another so consecutive iterations touch different memory.

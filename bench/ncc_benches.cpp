@@ -1,5 +1,6 @@
 // NCC scoring on every backend, and the OpenCV ways a user would score particles instead.
-// Names: ncc/<template WxH>/<dense|sparse10>/N<particles>/<dev:NAME | peer:NAME>.
+// Names: ncc/<template WxH>/<dense|sparse10|dense-edge>/N<particles>/<dev:NAME | peer:NAME>
+// (dense-edge: the filter's case with every patch over the map's edge).
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -35,16 +36,16 @@ ScoreOptions options_for(bool sparse) {
     return o;
 }
 
-void ncc_on_device(benchmark::State& state, DeviceEntry dev, FrameSize templ_size, bool sparse, int count) {
+void ncc_on_device(benchmark::State& state, DeviceEntry dev, FrameSize templ_size, bool sparse, int count, bool over_the_edge) {
     Backend& backend = backend_for(dev.name);
     const MapHandle& map = map_on(dev.name);
     const cv::Mat templ = template_from_map(templ_size);
     const ScoringPlan plan =
         make_scoring_plan(GrayView{templ.ptr<std::uint8_t>(), templ.cols, templ.rows, templ.cols}, options_for(sparse));
-    const std::vector<Pose> poses = poses_around_centre(count);
+    const std::vector<Pose> poses = over_the_edge ? poses_over_the_edge(count, templ_size) : poses_around_centre(count);
     std::vector<ParticleScore> scores(poses.size());
     PhaseTimes t;
-    if (first_time("ncc/" + dev.name + "/" + templ_size.text() + (sparse ? "/sparse/" : "/dense/") + std::to_string(count)))
+    if (first_time("ncc/" + dev.name + "/" + templ_size.text() + (sparse ? "/sparse/" : over_the_edge ? "/dense-edge/" : "/dense/") + std::to_string(count)))
         backend.score(map, plan, poses, scores, &t);  // lazy buffers sized for this batch
     const bool device_clock = has_device_clock(dev.family);
     IterationLog log(state);
@@ -160,12 +161,12 @@ void register_ncc_benchmarks(const Sweep& sweep) {
                 for (int n : sweep.ncc_counts) {
                     if (dev.family == "cpu-ref") continue;  // its own, smaller case below
                     benchmark::RegisterBenchmark((prefix + std::to_string(n) + "/dev:" + dev.name).c_str(), ncc_on_device, dev, ts,
-                                                 sparse, n)
+                                                 sparse, n, false)
                         ->UseManualTime()->Unit(benchmark::kMillisecond);
                 }
                 if (dev.family == "cpu-ref")
                     benchmark::RegisterBenchmark((prefix + std::to_string(sweep.ncc_reference_count) + "/dev:" + dev.name).c_str(),
-                                                 ncc_on_device, dev, ts, sparse, sweep.ncc_reference_count)
+                                                 ncc_on_device, dev, ts, sparse, sweep.ncc_reference_count, false)
                         ->UseManualTime()->Unit(benchmark::kMillisecond);
             }
             if (sparse) continue;  // the peers and the old cpu path have no sparse mode
@@ -184,10 +185,17 @@ void register_ncc_benchmarks(const Sweep& sweep) {
     const std::string prefix = "ncc/" + fs.text() + "/dense/N" + std::to_string(sweep.ncc_filter_count);
     for (const DeviceEntry& dev : bench_devices())
         if (dev.family != "cpu-ref")
-            benchmark::RegisterBenchmark((prefix + "/dev:" + dev.name).c_str(), ncc_on_device, dev, fs, false, sweep.ncc_filter_count)
+            benchmark::RegisterBenchmark((prefix + "/dev:" + dev.name).c_str(), ncc_on_device, dev, fs, false, sweep.ncc_filter_count, false)
                 ->UseManualTime()->Unit(benchmark::kMillisecond);
     benchmark::RegisterBenchmark((prefix + "/old:cpu_float").c_str(), ncc_old_cpu, fs, sweep.ncc_filter_count)
         ->UseManualTime()->Unit(benchmark::kMillisecond);
+    // The same particles' count with every patch over the map's edge: beside the case above, how
+    // much a cloud at the border costs each backend.
+    const std::string edge = "ncc/" + fs.text() + "/dense-edge/N" + std::to_string(sweep.ncc_filter_count);
+    for (const DeviceEntry& dev : bench_devices())
+        if (dev.family != "cpu-ref")
+            benchmark::RegisterBenchmark((edge + "/dev:" + dev.name).c_str(), ncc_on_device, dev, fs, false, sweep.ncc_filter_count, true)
+                ->UseManualTime()->Unit(benchmark::kMillisecond);
 }
 
 }  // namespace trn::bench
