@@ -8,6 +8,9 @@
 namespace trn::cpu {
 namespace {
 
+// A sample counts when its rounded position is on the map (both samplers that check use this).
+bool on_map(float px, float py, float xmax, float ymax) { return px >= 0.0f && py >= 0.0f && px <= xmax && py <= ymax; }
+
 template <bool Checked>
 RowSums sample_row(const MapPixels& m, const RowInput& row) {
     const float xmax = float(m.width - 1), ymax = float(m.height - 1);
@@ -18,7 +21,7 @@ RowSums sample_row(const MapPixels& m, const RowInput& row) {
         float py = row.ay[k] + (row.ddvs ? row.ddvs[k] : row.ddv);
         std::int64_t valid = 1;
         if constexpr (Checked) {
-            valid = (px >= 0.0f && py >= 0.0f && px <= xmax && py <= ymax) ? 1 : 0;
+            valid = on_map(px, py, xmax, ymax) ? 1 : 0;
             px = std::clamp(px, 0.0f, xmax);  // keeps the loads in bounds; masked out below
             py = std::clamp(py, 0.0f, ymax);
         }
@@ -49,10 +52,7 @@ RowSums sample_row_inside(const MapPixels& m, const RowInput& row) { return samp
 
 RowSums sample_row_clipped(const MapPixels& m, const RowInput& row, bool vector) {
     const float xmax = float(m.width - 1), ymax = float(m.height - 1);
-    auto inside = [&](int k) {  // sample_row_checked's test, on the same rounded position
-        const float px = row.ax[k] + row.bdv, py = row.ay[k] + row.ddv;
-        return px >= 0.0f && py >= 0.0f && px <= xmax && py <= ymax;
-    };
+    auto inside = [&](int k) { return on_map(row.ax[k] + row.bdv, row.ay[k] + row.ddv, xmax, ymax); };  // the same rounded position
     int first = 0, end = row.count;
     while (first < end && !inside(first)) ++first;
     while (end > first && !inside(end - 1)) --end;
