@@ -32,9 +32,8 @@ Json flight_result(const localize::LocalizationSummary& s) {
     return j;
 }
 
-double mean_of(const std::vector<Json>& outputs, const char* key, const FlightCell& cell) {
-    double sum = 0;
-    int n = 0;
+std::vector<double> values_of(const std::vector<Json>& outputs, const char* key, const FlightCell& cell) {
+    std::vector<double> values;
     for (const Json& o : outputs) {
         const Json& p = o.at("params");
         const int age = p.value("map_age", 0);  // odometry jobs fly one map and store no age
@@ -42,9 +41,26 @@ double mean_of(const std::vector<Json>& outputs, const char* key, const FlightCe
             age < cell.min_age || age > cell.max_age)
             continue;
         const double v = get(o.at("result"), key);
-        if (std::isfinite(v)) sum += v, ++n;
+        if (std::isfinite(v)) values.push_back(v);
     }
-    return n ? sum / n : NAN;
+    return values;
+}
+
+double mean_of(const std::vector<Json>& outputs, const char* key, const FlightCell& cell) {
+    const std::vector<double> values = values_of(outputs, key, cell);
+    double sum = 0;
+    for (double v : values) sum += v;
+    return values.empty() ? NAN : sum / values.size();
+}
+
+double quantile(std::vector<double> v, double q) {
+    std::erase_if(v, [](double x) { return !std::isfinite(x); });  // a job stores null for a non-finite number
+    if (v.empty()) return NAN;
+    std::sort(v.begin(), v.end());
+    const double at = q * (v.size() - 1);
+    const std::size_t below = static_cast<std::size_t>(std::floor(at));
+    const std::size_t above = std::min(below + 1, v.size() - 1);
+    return v[below] + (at - below) * (v[above] - v[below]);
 }
 
 WinCount scenarios_where_more_accurate(const std::vector<Json>& outputs, const std::vector<std::string>& presets, const std::string& better,
@@ -65,18 +81,21 @@ double out_of_date_loss_percent(const std::vector<Json>& outputs, const std::str
     return 100 * (other_years / same_year - 1);
 }
 
-namespace {
-
-// Of the finite values (a job stores null for a non-finite number; NaN would break the sort).
-double median(std::vector<double> v) {
-    std::erase_if(v, [](double x) { return !std::isfinite(x); });
-    if (v.empty()) return NAN;
-    std::sort(v.begin(), v.end());
-    const std::size_t n = v.size();
-    return n % 2 ? v[n / 2] : (v[n / 2 - 1] + v[n / 2]) / 2;
+Table error_spread(const std::vector<Json>& outputs, const std::vector<std::string>& conversions) {
+    Table t;
+    t.title = "Spread of the flights' mean errors per function: median, mean, 90th percentile, and the share of flights whose mean error "
+              "exceeds 50 m and 100 m (lost or late locks; not in the dissertation, which prints means only)";
+    t.header = {"Function", "Flights", "Median m", "Mean m", "90th percentile m", "Over 50 m", "Over 100 m"};
+    for (const auto& f : conversions) {
+        const std::vector<double> e = values_of(outputs, "filter_mean_error_m", {"", f});
+        const auto share_over = [&e](double limit) {
+            return e.empty() ? NAN : 100.0 * std::count_if(e.begin(), e.end(), [limit](double x) { return x > limit; }) / e.size();
+        };
+        t.rows.push_back({f, std::to_string(e.size()), fmt(quantile(e, 0.5)), fmt(mean_of(outputs, "filter_mean_error_m", {"", f})),
+                          fmt(quantile(e, 0.9)), percent(share_over(50), 1), percent(share_over(100), 1)});
+    }
+    return t;
 }
-
-}  // namespace
 
 Table odometry_summary(const std::vector<Json>& outputs, const std::string& study) {
     std::vector<double> filter_final, odometry_final, filter_mean, odometry_mean;
@@ -94,7 +113,8 @@ Table odometry_summary(const std::vector<Json>& outputs, const std::string& stud
     t.header = {"Study", "Final error below odometry's", "Mean error below odometry's", "Median mean error m, filter vs odometry",
                 "Median final error m, filter vs odometry", "Final error < 10 m"};
     t.rows.push_back({study, std::to_string(final_below) + of_n, std::to_string(mean_below) + of_n,
-                      fmt(median(filter_mean)) + " vs " + fmt(median(odometry_mean)), fmt(median(filter_final)) + " vs " + fmt(median(odometry_final)),
+                      fmt(quantile(filter_mean, 0.5)) + " vs " + fmt(quantile(odometry_mean, 0.5)),
+                      fmt(quantile(filter_final, 0.5)) + " vs " + fmt(quantile(odometry_final, 0.5)),
                       std::to_string(within_10) + of_n});
     return t;
 }

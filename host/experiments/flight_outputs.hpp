@@ -27,8 +27,13 @@ struct FlightCell {
     int min_age = 0, max_age = INT_MAX;
 };
 inline FlightCell at_age(std::string preset, std::string conversion, int age) { return {std::move(preset), std::move(conversion), age, age}; }
+// The finite values of `key` over the matching jobs, in job order.
+std::vector<double> values_of(const std::vector<Json>& outputs, const char* key, const FlightCell& cell);
 // Mean of `key` over the matching jobs with a finite value; NaN when none.
 double mean_of(const std::vector<Json>& outputs, const char* key, const FlightCell& cell);
+// The q-quantile (0..1) of the finite values, linear between order statistics (R's type 7, NumPy's
+// default); NaN when none. quantile(v, 0.5) is the median.
+double quantile(std::vector<double> values, double q);
 
 // The paper's "logistic beats linear in 10 of 12 scenarios": in how many of `presets` the mean
 // error of `better` is below that of `than` (presets lacking either are not counted).
@@ -43,6 +48,12 @@ WinCount scenarios_where_more_accurate(const std::vector<Json>& outputs, const s
 // 100 * (mean over jobs with map age > 0 / mean over jobs with map age 0 - 1). `conversion` ""
 // pools every function. NaN when either side has no job.
 double out_of_date_loss_percent(const std::vector<Json>& outputs, const std::string& conversion);
+
+// How a function's flights spread, one row per function: flights, median, mean and 90th percentile
+// of the flights' mean errors, and the share of flights whose mean error exceeds 50 m and 100 m. A
+// mean over flights (every table of the dissertation) is ruled by its few lost flights; this shows
+// how many there are and what a typical flight does. Not in the dissertation, which prints means only.
+Table error_spread(const std::vector<Json>& outputs, const std::vector<std::string>& conversions);
 
 // The filter against the odometry over a study's flights, one row: in how many flights the filter's
 // final and mean errors are below the odometry's, the median errors of both, and how many flights

@@ -329,6 +329,9 @@ public:
         }
         // The same flights also give Table 3.12 (it is the robustness study's table over all functions).
         md += robustness_table(o, mc) + "\n";
+        const Table spread = error_spread(o, strings(mc.config.at("conversions")));
+        spread.write(mc.out, "table_error_spread");
+        md += spread.markdown() + "\n";
         md += claims_table(o, mc, true);
         return md;
     }

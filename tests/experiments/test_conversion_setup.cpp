@@ -119,6 +119,29 @@ TEST(FlightClaims, OutOfDateLossComparesOtherMapYearsWithTheFlightsYear) {
     EXPECT_TRUE(std::isnan(out_of_date_loss_percent(o, "g")));  // g has no other-year flight
 }
 
+TEST(FlightSpread, QuantilesAreLinearBetweenOrderStatisticsOfTheFiniteValues) {
+    EXPECT_DOUBLE_EQ(quantile({4, 1, 3, 2}, 0.5), 2.5);  // the median of an even count
+    EXPECT_DOUBLE_EQ(quantile({5, 1, 3}, 0.5), 3);
+    EXPECT_DOUBLE_EQ(quantile({1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11}, 0.9), 10);
+    EXPECT_DOUBLE_EQ(quantile({10, 20}, 0.9), 19);  // R: quantile(c(10, 20), 0.9) = 19
+    EXPECT_DOUBLE_EQ(quantile({7, NAN, INFINITY}, 0.9), 7);
+    EXPECT_TRUE(std::isnan(quantile({}, 0.5)));
+}
+
+// One lost flight moves the mean, not the median; the shares count the flights over 50 and 100 m.
+TEST(FlightSpread, ShowsMedianMeanAndTheShareOfFlightsFarOff) {
+    std::vector<Json> o;
+    for (double e : {2.0, 4.0, 6.0, 8.0, 60.0}) o.push_back(job("A", "f", 0, e));
+    for (double e : {1.0, 3.0, 5.0, 7.0, 900.0}) o.push_back(job("B", "g", 2, e));
+    o.push_back(job("B", "g", 0, NAN));  // a stored null: not a flight of the spread
+    const Table t = error_spread(o, {"f", "g", "h"});
+    ASSERT_EQ(t.rows.size(), 3u);
+    EXPECT_EQ(t.rows[0], (std::vector<std::string>{"f", "5", "6.00", "16.00", "39.20", "20.0%", "0.0%"}));
+    EXPECT_EQ(t.rows[1], (std::vector<std::string>{"g", "5", "5.00", "183.20", "542.80", "20.0%", "20.0%"}));
+    EXPECT_EQ(t.rows[2][1], "0");  // no flight: counted, the figures n/a
+    EXPECT_EQ(t.rows[2][2], "n/a");
+}
+
 // The merged conversion tables carry the computed lines: synthetic jobs for the --quick job list
 // (logistic 0.2 beats linear; other years 30 % worse) give exactly those figures.
 TEST(FlightClaims, ConversionMergeShowsTheComputedLines) {
@@ -138,6 +161,7 @@ TEST(FlightClaims, ConversionMergeShowsTheComputedLines) {
     EXPECT_NE(md.find("the body printed as Table 3.8"), std::string::npos);
     EXPECT_NE(md.find("| UR-200 | 0.00% | 22.90% | 100.00% | 224.89% | 100.00% | 164.34% |"), std::string::npos) << md;  // Table 3.10
     EXPECT_NE(md.find("| logistic:0.2 | 2.12 | 8.96 | 11.50 | 53.08 | 18.4% | 16.9% | +30.0% |"), std::string::npos) << md;  // Table 3.12
+    EXPECT_NE(md.find("| logistic:0.2 | 2 | 11.50 | 11.50 | 12.70 | 0.0% | 0.0% |"), std::string::npos) << md;  // the spread
 }
 
 }  // namespace
