@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <stdexcept>
 #include <string>
 
 #include "trn/detail/json_number.hpp"
+#include "trn/error.hpp"
 #include "trn/localize/report.hpp"
 
 namespace trn::experiments {
@@ -56,7 +56,7 @@ double mean_of(const std::vector<Json>& outputs, const char* key, const FlightCe
 
 double quantile(std::vector<double> v, double q) {
     // Outside 0..1 (or NaN) the order statistic would be read out of range.
-    if (!(q >= 0 && q <= 1)) throw std::invalid_argument("quantile: q = " + std::to_string(q) + " is outside 0..1");
+    if (!(q >= 0 && q <= 1)) throw Error("quantile: q = " + std::to_string(q) + " is outside 0..1");
     std::erase_if(v, [](double x) { return !std::isfinite(x); });  // a job stores null for a non-finite number
     if (v.empty()) return NAN;
     std::sort(v.begin(), v.end());

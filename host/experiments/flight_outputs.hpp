@@ -32,7 +32,7 @@ std::vector<double> values_of(const std::vector<Json>& outputs, const char* key,
 // Mean of `key` over the matching jobs with a finite value; NaN when none.
 double mean_of(const std::vector<Json>& outputs, const char* key, const FlightCell& cell);
 // The q-quantile (0..1) of the finite values, linear between order statistics (R's type 7, NumPy's
-// default); NaN when none; std::invalid_argument for q outside 0..1. quantile(v, 0.5) is the median.
+// default); NaN when none; trn::Error for q outside 0..1. quantile(v, 0.5) is the median.
 double quantile(std::vector<double> values, double q);
 
 // The paper's "logistic beats linear in 10 of 12 scenarios": in how many of `presets` the mean
