@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # scripts/device-check keeps to its budget and says so: with a 5 s budget every step is recorded as
-# skipped in summary.md and the exit status is 1 (not a silent pass); a non-empty --out and a bad
-# --budget (0, or past 2^63) and an --out that is a link are usage errors (exit 2). Runs in about a second (nothing is built or run).
+# skipped in summary.md and the exit status is 1 (not a silent pass); a non-empty --out, an --out
+# that is a link and a bad --budget (0, or past 2^63) are usage errors (exit 2). Runs in about a
+# second (nothing is built or run).
 # usage: device_check_budget.sh REPO_ROOT WORK_DIR
 set -uo pipefail
 repo=$1 work=$2
