@@ -6,6 +6,13 @@
 
 die() { echo "${0##*/}: $*" >&2; exit 1; }
 
+# A path the dispatcher writes (or hands to a program that writes it) must be absent or a plain
+# file, never a link or another kind of file: a planted link is refused, not written through.
+plain_file_or_absent() {
+  [[ ! -L $1 ]] || die "$1 is a symbolic link: not written through (remove it)"
+  [[ ! -e $1 || -f $1 ]] || die "$1 exists and is not a plain file"
+}
+
 # The trnkit executable: --trnkit PATH, else the build next to these scripts, else PATH.
 find_trnkit() {
   local given=$1 here
@@ -77,6 +84,7 @@ list_and_prepare() {
   fi
   "$trnkit" experiment "$study" "${experiment_options[@]}" --prepare || die "cannot prepare $out (see above)"
   dispatch_dir=$out/dispatch
+  [[ ! -L $dispatch_dir ]] || die "$dispatch_dir is a symbolic link: not written through (remove it)"
   mkdir -p -- "$dispatch_dir"
 }
 

@@ -16,7 +16,7 @@ flown=$(python3 -c "import json; print('\n'.join(json.loads(l)['job'] for l in o
 overlap=$(comm -12 <(echo "$all") <(echo "$flown"))
 [[ -n $overlap ]] || fail "the quick studies share no flight; this test checks nothing"
 left=$("$T" experiment robustness --quick --resume --list-jobs=ids | sort)
-[[ $left == "$(comm -23 <(echo "$all") <(echo "$flown"))" ]] || fail "--resume lists $(echo $left), expected the ids conversion has not flown"
+[[ $left == "$(comm -23 <(echo "$all") <(echo "$flown"))" ]] || fail "--resume lists ${left//$'\n'/ }, expected the ids conversion has not flown"
 # Without --resume, or with another store file, every job is listed.
 [[ $("$T" experiment robustness --quick --list-jobs=ids | wc -l) -eq $(echo "$all" | wc -l) ]] || fail "without --resume jobs were dropped"
 [[ $("$T" experiment robustness --quick --resume --results own.jsonl --list-jobs=ids | wc -l) -eq $(echo "$all" | wc -l) ]] ||

@@ -48,7 +48,7 @@ for kv in '"profile": "dissertation"' '"particles": 500' '"max_particles": 10000
 done
 "$T" localize --dataset flt --backend cpu --profile dissertation --init-radius-m 50 --max-particles 3000 --no-plots --out l2 >/dev/null 2>&1 ||
   fail "localize with options over the profile failed"
-grep -q '"init_radius_m": 50' l2/summary.json && grep -q '"max_particles": 3000' l2/summary.json || fail "localize: given options do not replace the profile's"
+{ grep -q '"init_radius_m": 50' l2/summary.json && grep -q '"max_particles": 3000' l2/summary.json; } || fail "localize: given options do not replace the profile's"
 "$T" localize --dataset flt --backend cpu --no-plots --out l3 >/dev/null 2>&1 || fail "localize failed"
-grep -q '"init_radius_m": 50' l3/summary.json && grep -q '"max_particles": 2000' l3/summary.json || fail "localize: ours' defaults changed"
+{ grep -q '"init_radius_m": 50' l3/summary.json && grep -q '"max_particles": 2000' l3/summary.json; } || fail "localize: ours' defaults changed"
 echo "profile options: refused with their names; demo and localize run and record both profiles"
