@@ -70,4 +70,19 @@ double exif_time_s(const std::string& t, const std::string& subsec, const std::s
     return double(days_from_civil(v[0], unsigned(v[1]), unsigned(v[2]))) * 86400 + v[3] * 3600 + v[4] * 60 + v[5] + frac;
 }
 
+double focal_plane_sensor_width_mm(double resolution, long unit, double recorded_px, double stored_px) {
+    double mm_per_unit = 0;
+    switch (unit) {
+        case 2: mm_per_unit = 25.4; break;
+        case 3: mm_per_unit = 10; break;
+        case 4: mm_per_unit = 1; break;
+        case 5: mm_per_unit = 0.001; break;
+        default: return NAN;
+    }
+    const double px = recorded_px > 0 ? recorded_px : stored_px;
+    if (!(resolution > 0) || !std::isfinite(resolution) || !(px > 0)) return NAN;
+    const double mm = px / resolution * mm_per_unit;
+    return mm >= 1 && mm <= 100 ? mm : NAN;
+}
+
 }  // namespace trn::io::detail

@@ -122,6 +122,14 @@ PhotoExif parse_photo_exif(std::string_view bytes, const std::string& name) {
             if (!(p.focal_length_mm > 0 && p.focal_length_mm < 10000))
                 throw Error(name + ": EXIF FocalLength " + quote_input(d->toString()) + " is not a focal length in mm");
         }
+        if (const auto* d = find(exif, "Exif.Photo.FocalPlaneXResolution"); d && d->count() >= 1 &&
+            (d->typeId() == Exiv2::unsignedRational || d->typeId() == Exiv2::signedRational) && d->toRational(0).second != 0) {
+            const auto* unit = find(exif, "Exif.Photo.FocalPlaneResolutionUnit");
+            const auto* recorded = find(exif, "Exif.Photo.PixelXDimension");
+            p.sensor_width_mm = detail::focal_plane_sensor_width_mm(
+                rational(*d, 0, name, "Exif.Photo.FocalPlaneXResolution"), unit && unit->count() == 1 ? unit->toLong(0) : 2,
+                recorded && recorded->count() == 1 ? double(recorded->toLong(0)) : 0, p.width);
+        }
         if (const auto* d = find(exif, "Exif.Image.Orientation")) {
             const long o = d->count() == 1 ? d->toLong(0) : -1;
             if (o < 1 || o > 8) throw Error(name + ": EXIF Orientation " + quote_input(d->toString()) + " is not one of 1..8");

@@ -155,10 +155,13 @@ PhotoImportResult import_photos(const PhotoImportOptions& o, const std::function
         res.sensor_width_mm = o.sensor_width_mm, res.sensor_width_source = "sensor_width_mm";
     } else {
         res.sensor_width_mm = known_sensor_width_mm(first.exif.model);
+        if (std::isnan(res.sensor_width_mm) && std::isfinite(first.exif.sensor_width_mm))  // the camera's own word
+            res.sensor_width_mm = first.exif.sensor_width_mm, res.sensor_width_source = "EXIF FocalPlaneXResolution";
         if (std::isnan(res.sensor_width_mm))
             throw FieldError("sensor_width_mm", "required: the camera '" + io::quote_input(first.exif.model.empty() ? "(no EXIF Model)" : first.exif.model) +
                                                     "' of " + o.photos + "/" + first.photo +
-                                                    " is not in trnkit's table of sensor widths; give its sensor's width in mm (1/2.3\": 6.17)");
+                                                    " is not in trnkit's table of sensor widths and its EXIF has no usable FocalPlaneXResolution; give its "
+                                                    "sensor's width in mm (1/2.3\": 6.17)");
         for (const CameraSensor& s : kSensors)
             if (lower(s.model) == lower(first.exif.model)) res.sensor_width_source = s.name;
     }

@@ -33,6 +33,7 @@ struct PhotoExif {
     double time_s = NAN;               // it (+ SubSecTimeOriginal) as seconds since 1970 in the camera's clock (NaN: absent)
     double focal_length_mm = NAN;      // Exif.Photo.FocalLength
     int orientation = 0;               // Exif.Image.Orientation 1..8 (0: absent)
+    double sensor_width_mm = NAN;      // from FocalPlaneXResolution (+ unit, PixelXDimension); NaN: absent or implausible
     std::optional<GpsFix> gps;         // GPSLatitude/Longitude (+Ref); absent, or GPSStatus V (void): none
 };
 
