@@ -53,6 +53,27 @@ void add_filter_model_options(CLI::App& cmd, FilterModelArgs& a) {
                  "Our motion model without its crab offset: the odometry's distance is moved along the measured heading, its "
                  "direction dropped; the rest stays ours (heading reset to the magnetometer, our alpha roles). Not the "
                  "dissertation's equations: those are --profile dissertation");
+    filter::UpdateModel& u = a.update;
+    given(cmd.add_option("--update-min-ess", u.min_ess_fraction,
+                         "Update: temper each frame's weights so the effective sample size stays at least this share of the "
+                         "particles (0: believe every frame whole, the dissertation)")
+              ->check(real_in(0, 1))->capture_default_str(),
+          [&u](filter::FilterConfig& c) { c.update.min_ess_fraction = u.min_ess_fraction; });
+    given(cmd.add_option("--update-unknown", a.update_unknown,
+                         "Update: weight of a particle without a valid score (its patch off the map or on no-data): neutral (a "
+                         "poor but possible place's, --update-unknown-quantile; ours) or zero (the dissertation)")
+              ->check(CLI::IsMember({"neutral", "zero"})),
+          [&a](filter::FilterConfig& c) { c.update.unknown_neutral = a.update_unknown == "neutral"; });
+    given(cmd.add_option("--update-min-valid", u.min_valid_fraction,
+                         "Update: a particle is scored when at least this share of its samples lies on map data (off the map and "
+                         "no-data are not); fewer: --update-unknown decides its weight")
+              ->check(real_in(0, 1, Open::low))->capture_default_str(),
+          [&u](filter::FilterConfig& c) { c.update.min_valid_fraction = u.min_valid_fraction; });
+    given(cmd.add_option("--update-unknown-quantile", u.unknown_quantile,
+                         "Update: a particle without a valid score gets the weight of this quantile of the valid particles' NCCs "
+                         "(with --update-unknown neutral)")
+              ->check(real_in(0, 1))->capture_default_str(),
+          [&u](filter::FilterConfig& c) { c.update.unknown_quantile = u.unknown_quantile; });
     filter::LockMonitorConfig& l = a.lock;
     given(cmd.add_option("--lock-min-contrast", l.min_contrast, "Lock monitor: best NCC must beat random places by this many of their sd")
               ->check(real_in(0, 100))->capture_default_str(),
@@ -78,6 +99,7 @@ void apply_filter_model_options(const FilterModelArgs& a, filter::FilterConfig& 
     const filter::Profile profile = filter::parse_profile(a.profile);
     c.motion = filter::profile_config(profile).motion;
     c.lock = filter::profile_config(profile).lock;
+    c.update = filter::profile_config(profile).update;
     for (const auto& [option, apply] : a.given)
         if (option->count() > 0) apply(c);
     c.motion.along_heading = a.along_heading;

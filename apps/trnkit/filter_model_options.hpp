@@ -1,5 +1,5 @@
 #pragma once
-// The particle filter's profile, motion-model and lock-monitor options, shared by `localize` and
+// The particle filter's profile, motion-model, update and lock-monitor options, shared by `localize` and
 // `demo`: registered on a subcommand with their ranges (checked by CLI11 at parse time through
 // real_in, so a bad value fails before any work with one line naming the option) and applied on
 // top of the profile's FilterConfig (filter::profile_config): an option given on the command line
@@ -20,6 +20,8 @@ struct FilterModelArgs {
     std::string lock_monitor;  // "", "on", "off" ("": the profile's)
     filter::MotionModel motion;
     filter::LockMonitorConfig lock;
+    filter::UpdateModel update;
+    std::string update_unknown;  // "neutral", "zero" ("": the profile's)
     bool along_heading = false, no_lock_monitor = false;
     // One per option: copies the value into a config when the option was given.
     std::vector<std::pair<const CLI::Option*, std::function<void(filter::FilterConfig&)>>> given;

@@ -18,8 +18,17 @@ using Json = nlohmann::ordered_json;
 // The filter a study's jobs start from: the configuration's profile ("profile": ours or
 // dissertation, filter::profile_config; ours when absent) with its "lock_monitor" (true / false)
 // when it has one. Each study then sets what it varies (conversion, sampling, seed, radius).
+// The chapter-3 studies keep the update their stores (results/) were flown with: weight 0 without a
+// valid score, no tempering, scored from 0.9 of a patch on the map, lost odometry held in the world
+// frame (below). Our profile's mission update (issue 42)
+// came after ~40 core-hours of stored flights over maps without no-data; re-flying them under it is
+// a new sweep, not a silent change of what the stored figures mean (docs/RESULTS.md, "Real flights").
+inline constexpr filter::UpdateModel kStudyUpdate{
+    .unknown_neutral = false, .min_valid_fraction = 0.9, .lost_body_velocity = false, .min_ess_fraction = 0};
+
 inline filter::FilterConfig study_filter(const Json& config) {
     filter::FilterConfig f = filter::profile_config(filter::parse_profile(config.value("profile", std::string("ours"))));
+    f.update = kStudyUpdate;
     if (config.contains("lock_monitor")) f.lock.enabled = config.at("lock_monitor").get<bool>();
     return f;
 }

@@ -60,7 +60,7 @@ void translate(const MotionModel& model, const StepMotion& m, double mpp, const 
     const double d = m.distance_px * (1 + model.alpha1 * m.noise_gain * z[1]);
     const double offset = model.along_heading ? 0.0 : m.course_offset_rad;
     const double course = heading + offset + ((model.alpha2 * m.noise_gain) + model.alpha3 * m.turn_rad) * z[2];
-    const double pos_sd = model.eps_tran_m / mpp;
+    const double pos_sd = model.eps_tran_m / mpp + m.diffusion_px;
     x += d * std::sin(course) + pos_sd * z[3];
     y -= d * std::cos(course) + pos_sd * z[4];
 }

@@ -13,6 +13,14 @@
 #include "trn/detail/angles.hpp"
 
 namespace trn::filter {
+namespace {
+// Lost odometry: a heading change above this since the last step is a turn (UpdateModel).
+constexpr double kLostStraightTurnRad = 30 * kDeg;
+// Odometry lost within this many steps supports no position: the map is then the better prior,
+// and a particle without a valid score gets weight 0 again (UpdateModel::unknown_neutral).
+constexpr std::size_t kDoubtSteps = 20;
+}  // namespace
+
 SamplingMethod parse_sampling_method(std::string_view text) {
     if (text == "kld") return SamplingMethod::Kld;
     if (text == "importance") return SamplingMethod::Importance;
@@ -51,6 +59,10 @@ FilterConfig dissertation_profile() {
     c.fixed_particles = 500;
     c.init_radius_m = 300;
     c.lock.enabled = false;
+    c.update.unknown_neutral = false;
+    c.update.min_ess_fraction = 0;
+    c.update.min_valid_fraction = 0.9;
+    c.update.lost_body_velocity = false;
     c.motion.equations = MotionEquations::Dissertation;
     c.motion.alpha1 = c.motion.alpha2 = c.motion.alpha3 = 1;
     c.motion.eps_tran_m = 3;
@@ -60,6 +72,15 @@ FilterConfig dissertation_profile() {
 }
 
 FilterConfig profile_config(Profile p) { return p == Profile::Dissertation ? dissertation_profile() : FilterConfig{}; }
+
+void UpdateModel::validate() const {
+    if (!(min_ess_fraction >= 0 && min_ess_fraction <= 1))
+        throw Error("filter config: update.min_ess_fraction " + std::to_string(min_ess_fraction) + " must be in [0, 1]");
+    if (!(min_valid_fraction > 0 && min_valid_fraction <= 1))
+        throw Error("filter config: update.min_valid_fraction " + std::to_string(min_valid_fraction) + " must be in (0, 1]");
+    if (!(unknown_quantile >= 0 && unknown_quantile <= 1))
+        throw Error("filter config: update.unknown_quantile " + std::to_string(unknown_quantile) + " must be in [0, 1]");
+}
 
 void FilterConfig::validate() const {
     auto positive = [](double v, const char* name) {
@@ -75,6 +96,7 @@ void FilterConfig::validate() const {
     if (!std::isnan(init_heading_sd_deg) && !(init_heading_sd_deg >= 0 && init_heading_sd_deg <= 360))
         throw Error("filter config: init_heading_sd_deg must be in [0, 360] (or NaN: the motion model's eps_rot_deg)");
     motion.validate();
+    update.validate();
     lock.validate();
     if (!(kld_upper_quantile > 0 && kld_upper_quantile < 1)) throw Error("filter config: kld_upper_quantile must be in (0, 1)");
     if (min_particles < 1) throw Error("filter config: min_particles must be >= 1");
@@ -137,14 +159,35 @@ void ParticleFilter::initialise(double x, double y, double heading_rad) {
 StepMotion ParticleFilter::motion_from(const FilterInput& in, bool& lost) {
     double east = in.odometry_east_m, north = in.odometry_north_m;
     lost = !std::isfinite(east) || !std::isfinite(north);
+    lost_run_ = lost ? lost_run_ + 1 : 0;
+    const bool ours_lost = lost && config_.update.lost_body_velocity;
+    double diffusion_m = 0;
     if (lost) {
         east = last_east_, north = last_north_;  // constant velocity while odometry is lost
+        const double step_m = std::hypot(east, north);
+        const bool know_turn = !yaw_state_ && std::isfinite(in.heading_rad) && std::isfinite(last_heading_);
+        const double turn = know_turn ? wrap_angle(in.heading_rad - last_heading_) : 0.0;
+        if (ours_lost && (yaw_state_ || !know_turn || std::abs(turn) > kLostStraightTurnRad)) {
+            // In a turn (or with no compass to tell) a held velocity flies straight on while the
+            // aircraft comes round: no step, and a disc of the last step's length per lost step.
+            east = north = 0;
+            diffusion_m = 0.5 * step_m * static_cast<double>(lost_run_);
+        } else if (ours_lost) {
+            // Flying straight: the last step held in the aircraft's frame, turned with the compass.
+            const double c = std::cos(turn), sn = std::sin(turn);
+            east = last_east_ * c + last_north_ * sn, north = last_north_ * c - last_east_ * sn;
+            last_east_ = east, last_north_ = north;
+        }
     } else {
         last_east_ = east, last_north_ = north;
     }
+    // Lost odometry: triple noise (the dissertation profile, and ours for one step); ours grows it
+    // with every further lost step, as a dead-reckoned position's doubt grows.
+    const double lost_gain = !lost ? 1.0 : ours_lost ? std::min(3.0 * static_cast<double>(lost_run_), 15.0) : 3.0;
     if (yaw_state_) {  // the increment is in the previous frame's axes; the rotation unknown while lost
         StepMotion m = make_yaw_state_motion(east, north, lost ? NAN : in.odometry_yaw_rad, config_.metres_per_pixel);
-        m.noise_gain = lost ? 3 : 1;
+        m.noise_gain = lost_gain;
+        m.diffusion_px = diffusion_m / config_.metres_per_pixel;
         return m;
     }
     const bool have_heading = std::isfinite(in.heading_rad);
@@ -152,7 +195,8 @@ StepMotion ParticleFilter::motion_from(const FilterInput& in, bool& lost) {
     const double turn = have_heading && std::isfinite(last_heading_) ? wrap_angle(in.heading_rad - last_heading_) : 0;
     StepMotion m = make_step_motion(east, north, in.heading_rad, frame_heading, turn, config_.metres_per_pixel);
     if (have_heading) last_heading_ = in.heading_rad;
-    m.noise_gain = lost ? 3 : 1;
+    m.noise_gain = lost_gain;
+    m.diffusion_px = diffusion_m / config_.metres_per_pixel;
     return m;
 }
 
@@ -221,7 +265,31 @@ std::size_t ParticleFilter::sample_and_propagate(const StepMotion& m) {
     return bins.size();
 }
 
-std::size_t ParticleFilter::measure(const FilterInput& in, double& score_ms) {
+namespace {
+// The largest beta in (0, 1] whose weights exp(beta * log w) keep ESS >= min_ess * n (bisection:
+// the ESS of tempered weights falls as beta grows). log_w: finite, any offset.
+double tempering_exponent(std::span<const double> log_w, double min_ess) {
+    const double top = *std::max_element(log_w.begin(), log_w.end());
+    const double n = static_cast<double>(log_w.size());
+    auto ess_share = [&](double beta) {
+        double s = 0, s2 = 0;
+        for (const double l : log_w) {
+            const double w = std::exp(beta * (l - top));
+            s += w, s2 += w * w;
+        }
+        return s * s / s2 / n;
+    };
+    if (ess_share(1.0) >= min_ess) return 1.0;
+    double lo = 0, hi = 1;
+    for (int i = 0; i < 30; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (ess_share(mid) >= min_ess ? lo : hi) = mid;
+    }
+    return lo;
+}
+}  // namespace
+
+std::size_t ParticleFilter::measure(const FilterInput& in, double& score_ms, double& frame_weight) {
     poses_.resize(particles_.size());
     for (std::size_t i = 0; i < particles_.size(); ++i)
         poses_[i] = {static_cast<float>(particles_[i].x), static_cast<float>(particles_[i].y), static_cast<float>(particles_[i].yaw), 1.0f};
@@ -245,6 +313,59 @@ std::size_t ParticleFilter::measure(const FilterInput& in, double& score_ms) {
     }
     probe_scores_.assign(scores_.begin() + static_cast<std::ptrdiff_t>(particles_.size()), scores_.end());
     scores_.resize(particles_.size());
+    frame_weight = 1;
+    const UpdateModel& u = config_.update;
+    if (u.unknown_neutral && steps_since_lost_ > kDoubtSteps) {
+        if (invalid == particles_.size()) {  // nothing under any particle: the frame tells nothing
+            for (Particle& p : particles_) p.weight = 1;
+            frame_weight = 0;
+            return invalid;
+        }
+        // A whole patch's sample count: the most any particle had on the map (a frame entirely over
+        // partial patches takes its best-covered one as whole).
+        std::uint32_t whole = 0;
+        for (std::size_t i = 0; i < particles_.size(); ++i) whole = std::max(whole, scores_[i].valid_samples);
+        bool partial = invalid > 0;
+        for (std::size_t i = 0; i < particles_.size() && !partial; ++i) partial = scores_[i].valid() && scores_[i].valid_samples < whole;
+        if (partial) {
+            log_weights_.clear();  // the valid particles' NCCs, for their quantile
+            for (std::size_t i = 0; i < particles_.size(); ++i)
+                if (scores_[i].valid()) log_weights_.push_back(scores_[i].ncc);
+            const auto rank = static_cast<std::ptrdiff_t>(std::floor(u.unknown_quantile * static_cast<double>(log_weights_.size() - 1) + 0.5));
+            const auto mid = log_weights_.begin() + rank;
+            std::nth_element(log_weights_.begin(), mid, log_weights_.end());
+            double neutral = config_.conversion(*mid);
+            if (!(neutral > 0) || !std::isfinite(neutral)) neutral = 0;
+            for (std::size_t i = 0; i < particles_.size(); ++i) {
+                double& w = particles_[i].weight;
+                if (!scores_[i].valid()) {
+                    w = neutral;
+                } else if (scores_[i].valid_samples < whole && w > 0 && neutral > 0) {
+                    // A partly covered patch is evidence in proportion to its samples: its weight
+                    // moves from the neutral one towards its own as its share of a whole patch grows.
+                    const double share = static_cast<double>(scores_[i].valid_samples) / whole;
+                    w = std::exp(share * std::log(w) + (1 - share) * std::log(neutral));
+                }
+            }
+        }
+    }
+    if (u.min_ess_fraction > 0) {
+        log_weights_.resize(particles_.size());
+        bool any = false;
+        for (std::size_t i = 0; i < particles_.size(); ++i) {
+            const double w = particles_[i].weight;
+            any = any || w > 0;
+            log_weights_[i] = w > 0 ? std::log(w) : -1e300;
+        }
+        if (any) {
+            frame_weight = tempering_exponent(log_weights_, u.min_ess_fraction);
+            if (frame_weight < 1) {
+                const double top = *std::max_element(log_weights_.begin(), log_weights_.end());
+                for (std::size_t i = 0; i < particles_.size(); ++i)
+                    particles_[i].weight = particles_[i].weight > 0 ? std::exp(frame_weight * (log_weights_[i] - top)) : 0;
+            }
+        }
+    }
     return invalid;
 }
 
@@ -274,6 +395,7 @@ StepReport ParticleFilter::step(const FilterInput& in) {
     if (!initialised_) throw Error("ParticleFilter::step: call initialise() first");
     StepReport r;
     const StepMotion m = motion_from(in, r.odometry_lost);
+    steps_since_lost_ = r.odometry_lost ? 0 : steps_since_lost_ + 1;
     r.occupied_bins = sample_and_propagate(m);
     // The step on the map: with a compass the increment is east/north already; without one it is in
     // the previous frame's axes, turned here by the estimate's yaw before the step.
@@ -288,7 +410,7 @@ StepReport ParticleFilter::step(const FilterInput& in) {
     scores_.clear();
     probe_scores_.clear();
     if (!r.frame_missing) {
-        r.off_map = measure(in, r.score_ms);
+        r.off_map = measure(in, r.score_ms, r.frame_weight);
         double total = 0;
         for (const Particle& p : particles_) total += p.weight;
         if (!(total > 0) || !std::isfinite(total)) {
@@ -301,7 +423,7 @@ StepReport ParticleFilter::step(const FilterInput& in) {
                                   config_.reinit_radius_m, n, 0);
             else
                 scatter(cx, cy, m.heading_rad, m.have_heading, config_.reinit_radius_m, n);
-            r.off_map += measure(in, r.score_ms);
+            r.off_map += measure(in, r.score_ms, r.frame_weight);
             total = 0;
             for (const Particle& p : particles_) total += p.weight;
             if (!(total > 0) || !std::isfinite(total))

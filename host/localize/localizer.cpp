@@ -48,6 +48,7 @@ Localizer::Localizer(GrayView map, double metres_per_pixel, Backend& backend, co
     config_.validate();
     config_.filter.metres_per_pixel = metres_per_pixel;
     config_.filter.validate();
+    config_.scoring.min_valid_fraction = config_.filter.update.min_valid_fraction;  // one knob: the update's
     scorer_ = std::make_unique<filter::BackendScorer>(backend, map, config_.scoring, valid);
     filter_ = std::make_unique<filter::ParticleFilter>(*scorer_, config_.filter);
 }
@@ -100,7 +101,7 @@ Estimate Localizer::step(const Observation& o) {
     e.best_x = rep.estimate.best_x, e.best_y = rep.estimate.best_y, e.best_yaw = rep.estimate.best_yaw, e.best_ncc = rep.estimate.best_ncc;
     e.spread_m = rep.estimate.spread_px * mpp_;
     e.yaw_sd = rep.estimate.yaw_sd;
-    e.particles = rep.particles, e.off_map = rep.off_map;
+    e.particles = rep.particles, e.off_map = rep.off_map, e.frame_weight = rep.frame_weight;
     e.frame_missing = rep.frame_missing;
     e.odometry_lost = rep.odometry_lost, e.reinitialised = rep.reinitialised;
     e.lock = rep.lock;

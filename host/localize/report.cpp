@@ -46,7 +46,7 @@ void write_rows_csv(const std::string& path, const std::vector<LocalizationRow>&
     out.precision(10);
     out << "frame,time_s,distance_m,truth_x,truth_y,odometry_x,odometry_y,estimate_x,estimate_y,estimate_yaw,best_x,best_y,"
            "error_m,odometry_error_m,particles,off_map,score_ms,step_ms,odometry_lost,frame_missing,reinitialised,tilt_deg,too_oblique,"
-           "est_lat,est_lon,lock_state,lock_contrast,lock_drift_m,lock_drift_bound_m,lock_lost_events,lock_widen_radius_m,odometry_source"
+           "est_lat,est_lon,lock_state,lock_contrast,lock_drift_m,lock_drift_bound_m,lock_lost_events,lock_widen_radius_m,frame_weight,odometry_source"
         << (heading_columns ? ",truth_yaw_deg,estimate_yaw_deg,estimate_yaw_sd_deg,yaw_error_deg\n" : "\n");
     std::size_t lost_events = 0;  // running count, so a plot or a grep sees when each loss happened
     for (const LocalizationRow& r : rows) {
@@ -57,7 +57,7 @@ void write_rows_csv(const std::string& path, const std::vector<LocalizationRow>&
             << r.step_ms << ',' << r.odometry_lost << ',' << r.frame_missing << ',' << r.reinitialised << ',' << r.tilt_deg << ','
             << r.too_oblique << ',' << LatLonCell{r.estimate_lat} << ',' << LatLonCell{r.estimate_lon} << ',' << lock_state_name(r.lock) << ','
             << Cell{r.lock.contrast} << ',' << Cell{r.lock.drift_m} << ',' << Cell{r.lock.drift_bound_m} << ',' << lost_events << ','
-            << (r.lock.lost ? r.lock.widen_radius_m : 0.0) << ',' << r.odometry_source;
+            << (r.lock.lost ? r.lock.widen_radius_m : 0.0) << ',' << r.frame_weight << ',' << r.odometry_source;
         if (heading_columns)
             out << ',' << Cell{r.truth_yaw / kDeg} << ',' << r.estimate_yaw / kDeg << ',' << r.estimate_yaw_sd / kDeg << ','
                 << Cell{wrap_angle(r.estimate_yaw - r.truth_yaw) / kDeg};

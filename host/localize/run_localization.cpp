@@ -87,7 +87,7 @@ LocalizationResult run_localization(filter::FlightSource& source, Localizer& loc
             row.error_m = std::hypot(row.estimate_x - s.truth_x, row.estimate_y - s.truth_y) * mpp;
             row.odometry_error_m = std::hypot(row.odometry_x - s.truth_x, row.odometry_y - s.truth_y) * mpp;
         }
-        row.particles = e.particles, row.off_map = e.off_map;
+        row.particles = e.particles, row.off_map = e.off_map, row.frame_weight = e.frame_weight;
         row.score_ms = e.score_ms, row.step_ms = e.step_ms;
         row.odometry_lost = e.odometry_lost, row.frame_missing = e.frame_missing && !s.too_oblique, row.reinitialised = e.reinitialised;
         row.tilt_deg = s.tilt_deg, row.too_oblique = s.too_oblique;

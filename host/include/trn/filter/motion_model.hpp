@@ -78,6 +78,7 @@ struct StepMotion {
     double turn_rad = 0;           // |heading change| since the previous step
     double heading_change_rad = 0; // the same, signed (clockwise; 0 when unknown): delta_rot of eq. 2.11
     double noise_gain = 1;         // > 1 while the odometry is lost (constant velocity)
+    double diffusion_px = 0;       // extra isotropic position sd (ours, lost odometry in a turn: where it went is unknown)
     // Without a compass: each particle turns by rotation_rad (NaN: unknown) and moves by the
     // increment as seen from its own yaw before the turn (the increment is in the previous frame's axes).
     bool yaw_state = false;

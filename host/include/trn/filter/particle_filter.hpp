@@ -22,10 +22,11 @@
 //
 // Bad input is handled and counted, never fatal:
 //   - lost odometry (a non-finite delta): the last good per-step displacement is reused (constant
-//     velocity) with triple translation noise;
+//     velocity) with more translation noise (UpdateModel::lost_body_velocity says how);
 //   - a missing frame (empty image, e.g. it failed to load): particles are propagated and keep their
 //     weights; no measurement;
-//   - particles whose template leaves the map get an invalid score and weight 0;
+//   - particles whose template leaves the map get an invalid score: weight 0 as written, a typical
+//     place's under ours (UpdateModel);
 //   - collapse (every weight 0 or non-finite): re-initialisation policy — the particle set is redrawn
 //     uniformly within `reinit_radius_m` of the last estimate (propagated by this step's motion),
 //     headings from the magnetometer, and the step is scored again.
@@ -67,6 +68,41 @@ const char* to_string(HeadingMode mode);
 SamplingMethod parse_sampling_method(std::string_view text);  // "kld", "importance", "rejection"
 const char* to_string(SamplingMethod method);
 
+// How much one frame may tell the filter (issue 42: a real mission over no-data and bare field).
+// The dissertation's update weights each particle by conversion(NCC) and gives a particle without a
+// valid score (its patch off the map or on no-data) weight 0, so a frame mostly over no-data pulls
+// the cloud onto whatever map is left, and a frame entirely over it collapses the filter. Ours:
+//   - unknown is not impossible: a particle without a valid score learns nothing from the frame and
+//     gets the weight of a poor but possible place, the conversion of the `unknown_quantile` of the
+//     valid particles' NCCs (by default the median: a typical place); a frame on which no particle
+//     is valid leaves the weights equal (no re-initialisation). Not while the odometry has been
+//     lost within the last 20 steps: then dead reckoning supports no position and the map is the
+//     better prior (weight 0 off it, and a redraw within reinit_radius_m when nothing is on it);
+//   - a particle is scored when at least `min_valid_fraction` of its samples lie on map data (the
+//     NCC then over those): half a frame over the map is evidence, not "unknown" (the scorer's 0.9
+//     before this model: a frame near no-data left most of the cloud unscored); a partly covered
+//     patch counts in proportion to its share s of a whole patch's samples: weight^s * neutral^(1-s),
+//     since an NCC over fewer samples scatters more and its maxima are higher by chance;
+//   - tempering: the frame's weights are raised to the power beta in (0, 1], the largest that keeps
+//     the effective sample size (sum w)^2 / sum w^2 at least `min_ess_fraction` of the particles.
+//     A distinct match (a few particles far above the rest) is believed gradually over several
+//     frames, which a true place survives and a noise peak of one texture-less frame does not;
+//     a frame whose scores are all alike is taken whole (beta 1: it cannot collapse the cloud).
+struct UpdateModel {
+    bool unknown_neutral = true;     // false: weight 0 (the dissertation)
+    double unknown_quantile = 0.5;   // which valid NCC an unknown particle is given, 0..1 (0.5: the median)
+    double min_valid_fraction = 0.5; // share of a particle's samples on map data to be scored (the dissertation: 0.9)
+    // Lost odometry (a non-finite step): flying straight (the compass turned < 30 deg since the last
+    // step) the last step is held in the aircraft's frame; in a turn, or without a compass, no step
+    // but a disc of half the last step's length per lost step (a held velocity would fly straight on
+    // out of the turn); the noise grows with each further lost step (3x, 6x, ... at most 15x).
+    // false: the last step held in the world frame with triple noise (the dissertation profile's).
+    bool lost_body_velocity = true;
+    double min_ess_fraction = 0.25;  // 0: no tempering (the dissertation)
+
+    void validate() const;  // throws trn::Error naming the field and its range
+};
+
 struct FilterConfig {
     double metres_per_pixel = 1.0;  // map resolution
     SamplingMethod sampling = SamplingMethod::Kld;
@@ -89,6 +125,7 @@ struct FilterConfig {
     // Spread of the initial headings around the given one (degrees); NaN: motion.eps_rot_deg.
     double init_heading_sd_deg = NAN;
     MotionModel motion;   // eqs. 2.7-2.11 and their noise terms
+    UpdateModel update;   // what a frame may tell (above)
     LockMonitorConfig lock;  // wrong-lock detection and wider search
     std::uint64_t seed = 1;
 
@@ -116,6 +153,10 @@ struct FilterConfig {
 //       eps_tran 3 m, eps_rot 6 deg (the text: "known measurement error", no values; with the
 //       paper's sd of 1/3 these are 1 m and 2 deg per draw, our eps_tran_m / eps_rot_deg sds);
 //     - conversion logistic:0.2, NCC, importance / rejection with 500 (Table 3.6) as ours.
+//     - the update as written: weight = conversion(NCC), 0 without a valid score, no tempering,
+//       a particle scored from 0.9 of its samples on the map, lost odometry held in the world frame
+//       with triple noise (UpdateModel{.unknown_neutral = false, .min_valid_fraction = 0.9,
+//       .lost_body_velocity = false, .min_ess_fraction = 0}).
 enum class Profile { Ours, Dissertation };
 Profile parse_profile(std::string_view text);  // "ours", "dissertation"; throws trn::Error naming both
 const char* to_string(Profile profile);
@@ -153,6 +194,7 @@ struct StepReport {
     std::size_t particles = 0;
     std::size_t occupied_bins = 0;
     std::size_t off_map = 0;  // particles with an invalid score this step
+    double frame_weight = 1;  // the tempering exponent beta this step (UpdateModel); 0: the frame told nothing
     bool odometry_lost = false, frame_missing = false, reinitialised = false;
     LockReport lock;      // the lock monitor's evidence and verdict this step
     double score_ms = 0;  // wall time of the batched scoring call(s)
@@ -186,7 +228,7 @@ private:
     void scatter(double x, double y, double heading, bool have_heading, double radius_m, std::size_t count,
                  std::size_t first = 0, double heading_sd_deg = NAN);
     void scatter_yaw_state(double x, double y, double yaw, double yaw_sd, double radius_m, std::size_t count, std::size_t first);
-    std::size_t measure(const FilterInput& input, double& score_ms);  // returns invalid count
+    std::size_t measure(const FilterInput& input, double& score_ms, double& frame_weight);  // returns invalid count
     void update_estimate();
     void check_lock(const StepMotion& m, StepReport& report);
     double uniform();
@@ -195,13 +237,15 @@ private:
     ParticleScorer& scorer_;
     FilterConfig config_;
     std::vector<Particle> particles_, drawn_;
-    std::vector<double> cumulative_;
+    std::vector<double> cumulative_, log_weights_;
     std::vector<Pose> poses_;
     std::vector<ParticleScore> scores_, probe_scores_;
     Estimate estimate_;
     FilterCounters counters_;
     LockMonitor lock_;
     double last_east_ = 0, last_north_ = 0, last_heading_ = NAN;
+    std::size_t lost_run_ = 0;  // consecutive steps with lost odometry
+    std::size_t steps_since_lost_ = SIZE_MAX / 2;  // steps since the odometry was last lost
     bool yaw_state_ = false;  // config_.heading == HeadingMode::None
     bool initialised_ = false;
     std::uint64_t rng_;

@@ -24,7 +24,7 @@ public:
 struct BackendScorerOptions {
     int template_width = 160;  // the camera frame is area-downscaled to this width first (0: keep)
     Sampling sampling;         // dense, or Sampling::random(fraction, seed)
-    double min_valid_fraction = 0.9;
+    double min_valid_fraction = 0.9;  // the Localizer sets it from its filter's update.min_valid_fraction
 };
 
 // Uploads the map once; per frame downsizes the camera frame, builds the plan and scores all

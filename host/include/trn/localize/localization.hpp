@@ -31,6 +31,7 @@ struct LocalizationRow {
     double best_x = 0, best_y = 0;
     double error_m = NAN, odometry_error_m = NAN;
     std::size_t particles = 0, off_map = 0;
+    double frame_weight = 1;  // how much of the frame's evidence the update took (filter::UpdateModel; 0: none)
     double score_ms = 0, step_ms = 0;
     bool odometry_lost = false, frame_missing = false, reinitialised = false;
     filter::LockReport lock;  // the lock monitor's evidence and verdict this step (default: not assessed)

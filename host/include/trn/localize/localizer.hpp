@@ -22,7 +22,7 @@ namespace trn::localize {
 
 struct LocalizerConfig {
     filter::FilterConfig filter;             // metres_per_pixel is replaced by the map's
-    filter::BackendScorerOptions scoring;    // template width, dense or sparse scoring
+    filter::BackendScorerOptions scoring;    // template width, dense or sparse scoring (min_valid_fraction: filter.update's)
     double start_x = NAN, start_y = NAN;     // map pixels: the last known position (required before the first step)
     // Centre of the initial headings; NaN: the first step's heading. Without a compass
     // (filter.heading = HeadingMode::None) the yaw prior: NaN uniform, else Gaussian around it with
@@ -70,6 +70,8 @@ struct Estimate {
     double spread_m = 0;                            // weighted rms distance of the particles from (x, y)
     double yaw_sd = 0;                              // circular sd of the particles' yaws, radians (the heading's spread)
     std::size_t particles = 0, off_map = 0;         // scored this step / of them with no valid score
+    double frame_weight = 1;                        // the update's tempering exponent (filter::UpdateModel): 1 the frame
+                                                    // believed whole, smaller: believed in part, 0: it told nothing
     bool frame_missing = false;                     // no frame scored (none given, or too oblique)
     bool too_oblique = false;                       // the attitude tilted the camera beyond max_tilt_deg
     double tilt_deg = 0;                            // of the optical axis from the vertical (0 without attitude)
