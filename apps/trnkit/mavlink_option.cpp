@@ -55,8 +55,10 @@ MavlinkOut::MavlinkOut(const MavlinkArgs& a, double metres_per_pixel, bool compa
 void MavlinkOut::step(const localize::LocalizationRow& row, const localize::Estimate& e) {
     io::mavlink::NavFix f;
     f.time_us = static_cast<std::uint64_t>(std::llround(std::max(0.0, row.time_s) * 1e6));  // the flight's clock
-    // Lost: the lock monitor says so, or every particle is off the map; no lat/lon is no position either.
-    f.valid = !e.lock.lost && e.particles > 0 && e.off_map < e.particles && std::isfinite(row.estimate_lat) && std::isfinite(row.estimate_lon);
+    // No fix: the lock monitor says lost, every weight collapsed (the cloud was scattered anew over
+    // the re-initialisation radius) or every particle is off the map; no lat/lon is no position either.
+    f.valid = !e.lock.lost && !e.reinitialised && e.particles > 0 && e.off_map < e.particles && std::isfinite(row.estimate_lat) &&
+              std::isfinite(row.estimate_lon);
     f.reset = e.reinitialised;
     if (std::isnan(origin_x_)) origin_x_ = row.estimate_x, origin_y_ = row.estimate_y;
     if (f.valid) {
