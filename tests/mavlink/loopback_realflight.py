@@ -96,6 +96,29 @@ def check(decoded, rows, mpp):
     return problems
 
 
+def refused(trnkit, air, tmp):
+    """Bad --mavlink input stops localize before any step, with a message naming the option."""
+    problems = []
+    no_origin = os.path.join(tmp, "no_origin")
+    shutil.copytree(air, no_origin)
+    with open(os.path.join(air, "flight.json")) as f:
+        flight = json.load(f)
+    del flight["origin"]
+    with open(os.path.join(no_origin, "flight.json"), "w") as f:
+        json.dump(flight, f)
+    cases = [(air, ["--mavlink", "udpin:0.0.0.0:14550"], "--mavlink udpin:0.0.0.0:14550: trnkit only sends"),
+             (air, ["--mavlink", "udp:127.0.0.1:99999"], "1..65535"),
+             (air, ["--mavlink", "udp:127.0.0.1:14550", "--mavlink-messages", "gps"], "--mavlink-messages: 'gps' is not one of"),
+             (air, ["--mavlink", "udp:127.0.0.1:14550", "--mavlink-sysid", "0"], "--mavlink-sysid"),
+             (no_origin, ["--mavlink", "udp:127.0.0.1:14550"], "--mavlink: needs latitude/longitude")]
+    for dataset, extra, want in cases:
+        run = subprocess.run([trnkit, "localize", "--dataset", dataset, "--out", os.path.join(tmp, "refused"), "--no-plots",
+                              "--backend", "cpu"] + extra, capture_output=True, text=True, timeout=60)
+        if run.returncode == 0 or want not in run.stderr or "steps" in run.stdout:
+            problems.append("%s: exit %d, stderr %r (wanted %r, before any step)" % (" ".join(extra), run.returncode, run.stderr[-300:], want))
+    return problems
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__)
     ap.add_argument("--trnkit", required=True)
@@ -117,6 +140,7 @@ def main():
     with tempfile.TemporaryDirectory(prefix="trn_mavlink_") as tmp:
         air = os.path.join(tmp, "air")
         copy_first_rows(a.air, a.steps, air)
+        errors = refused(a.trnkit, air, tmp)
         listener = subprocess.Popen([a.node, a.decoder, "--udp", "2000"], stdout=subprocess.PIPE, text=True)
         try:
             port = json.loads(listener.stdout.readline())["port"]
@@ -136,7 +160,7 @@ def main():
         decoded = [json.loads(line) for line in out.splitlines() if line.strip()]
         with open(os.path.join(tmp, "out", "localization.csv"), newline="") as f:
             rows = list(csv.DictReader(f))
-    problems = check(decoded, rows, mpp)
+    problems = errors + check(decoded, rows, mpp)
     lost = sum(no_fix(r) for r in rows)
     print("%d steps (%d without a fix), %d packets decoded by node-mavlink, %d CRC errors" %
           (len(rows), lost, decoded[-1]["packets"], decoded[-1]["crc_errors"]))
