@@ -16,7 +16,7 @@ namespace trn::cli {
 struct MavlinkArgs {
     std::string target;  // empty: no MAVLink
     std::string messages = "gps_input,global_position,odometry";
-    unsigned system_id = 1, component_id = 197;
+    unsigned system_id = 1, component_id = 197, sensor_id = 0;
 };
 
 void add_mavlink_options(CLI::App& cmd, MavlinkArgs& args);

@@ -110,6 +110,7 @@ def refused(trnkit, air, tmp):
              (air, ["--mavlink", "udp:127.0.0.1:99999"], "1..65535"),
              (air, ["--mavlink", "udp:127.0.0.1:14550", "--mavlink-messages", "gps"], "--mavlink-messages: 'gps' is not one of"),
              (air, ["--mavlink", "udp:127.0.0.1:14550", "--mavlink-sysid", "0"], "--mavlink-sysid"),
+             (air, ["--mavlink-sensor-id", "3"], "--mavlink-sensor-id requires --mavlink"),
              (no_origin, ["--mavlink", "udp:127.0.0.1:14550"], "--mavlink: needs latitude/longitude")]
     for dataset, extra, want in cases:
         run = subprocess.run([trnkit, "localize", "--dataset", dataset, "--out", os.path.join(tmp, "refused"), "--no-plots",
