@@ -13,6 +13,8 @@ import math
 import numbers
 from collections.abc import Iterable
 
+import numpy
+
 from . import _trnkit
 
 __all__ = ["MavlinkEncoder"]
@@ -73,7 +75,8 @@ class MavlinkEncoder:
             if isinstance(v, bool) or not isinstance(v, numbers.Real):
                 raise _trnkit.Error(f"{keyword}={v!r}: expected a number (NaN: not known)")
             values[keyword] = float(v)
-        if not isinstance(valid, bool) or not isinstance(reset, bool):
-            raise _trnkit.Error(f"valid={valid!r}, reset={reset!r}: expected True or False")
-        return self._stream.encode(_whole(time_us, "time_us", 0, 2**64 - 1), valid, reset, processing_us=_whole(
+        for keyword, flag in (("valid", valid), ("reset", reset)):
+            if not isinstance(flag, (bool, numpy.bool_)):  # 1 or "yes" would be a guess
+                raise _trnkit.Error(f"{keyword}={flag!r}: expected True or False")
+        return self._stream.encode(_whole(time_us, "time_us", 0, 2**64 - 1), bool(valid), bool(reset), processing_us=_whole(
             processing_us, "processing_us", 0, 2**32 - 1), **values)

@@ -7,6 +7,7 @@ import os
 import subprocess
 import tempfile
 
+import numpy
 import pytest
 
 import trnkit
@@ -89,5 +90,8 @@ def test_bad_settings_name_their_keyword():
         trnkit.MavlinkEncoder(system_id=0)
     with pytest.raises(trnkit.Error, match="time_us=-1"):
         trnkit.MavlinkEncoder().encode(time_us=-1, valid=False)
+    with pytest.raises(trnkit.Error, match="valid=1"):
+        trnkit.MavlinkEncoder().encode(time_us=1, valid=1)
+    assert trnkit.MavlinkEncoder().encode(time_us=numpy.uint64(1), valid=numpy.bool_(False))  # NumPy scalars are fine
     with pytest.raises(TypeError):
         trnkit.MavlinkEncoder().encode(1, True)  # keywords only: a position is never mistaken for another field
