@@ -9,7 +9,10 @@
 const dgram = require('dgram');
 const fs = require('fs');
 const { PassThrough } = require('stream');
-const { MavLinkPacketSplitter, MavLinkPacketParser, minimal, common } = require('node-mavlink');
+const { MavLinkPacketSplitter, MavLinkPacketParser } = require('node-mavlink');
+// The definitions from mavlink-mappings 1.0.22 (package.json), not node-mavlink's own older copy:
+// the first with GLOBAL_POSITION_SENSOR (296) in common.
+const { minimal, common } = require('mavlink-mappings');
 
 const registry = { ...minimal.REGISTRY, ...common.REGISTRY };
 // The checksum seeds of the classes we decode with (the package's default table merges dialects).
