@@ -70,10 +70,15 @@ struct UdpSender::Socket {
 UdpSender::UdpSender(const Endpoint& peer, const std::string& option) : socket_(std::make_unique<Socket>()) {
     name_ = (peer.host.find(':') != std::string::npos ? "[" + peer.host + "]" : peer.host) + ":" + std::to_string(peer.port);
     addrinfo hints{};
-    hints.ai_family = AF_UNSPEC, hints.ai_socktype = SOCK_DGRAM, hints.ai_flags = AI_NUMERICSERV;
+    // Numeric addresses only: a flight computer must not wait on (or leak queries to) a name server,
+    // and a typo must not become a DNS lookup. "localhost" is this machine's IPv4 loopback.
+    hints.ai_family = AF_UNSPEC, hints.ai_socktype = SOCK_DGRAM, hints.ai_flags = AI_NUMERICSERV | AI_NUMERICHOST;
     addrinfo* found = nullptr;
-    const int rc = getaddrinfo(peer.host.c_str(), std::to_string(peer.port).c_str(), &hints, &found);
-    if (rc != 0 || !found) throw Error(option + " udp:" + name_ + ": cannot resolve '" + peer.host + "': " + gai_strerror(rc));
+    const std::string host = peer.host == "localhost" ? "127.0.0.1" : peer.host;
+    const int rc = getaddrinfo(host.c_str(), std::to_string(peer.port).c_str(), &hints, &found);
+    if (rc != 0 || !found)
+        throw Error(option + " udp:" + name_ + ": '" + peer.host + "' is not a numeric IP address (give the autopilot's address, e.g. " +
+                    "127.0.0.1 or 192.168.1.10; host names are not resolved)");
     std::memcpy(&socket_->peer, found->ai_addr, found->ai_addrlen);
     socket_->peer_len = found->ai_addrlen;
     socket_->fd = ::socket(found->ai_family, SOCK_DGRAM | SOCK_CLOEXEC, 0);

@@ -242,5 +242,5 @@ TEST(MavlinkUdp, DatagramsArriveWhole) {
     got.resize(static_cast<std::size_t>(n));
     EXPECT_EQ(got, frames);
     EXPECT_EQ(tx.sent(), 1u);
-    EXPECT_NE(error_of([] { mav::UdpSender bad({"no-such-host.invalid", 14550}); }).find("cannot resolve"), std::string::npos);
+    EXPECT_NE(error_of([] { mav::UdpSender bad({"no-such-host.invalid", 14550}); }).find("is not a numeric IP address"), std::string::npos);
 }
