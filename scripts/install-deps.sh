@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs every Debian 12 package trnkit needs to build, test, benchmark and plot.
+# Installs every Debian 12 package trnkit needs to build, test, benchmark and plot, and the MAVLink
+# tests' decoder from npm (node-mavlink; no MAVLink library is packaged in Debian 12).
 # Idempotent: when everything is already installed it prints nothing and touches nothing.
 set -euo pipefail
 
@@ -29,6 +30,8 @@ packages=(
   # the device kit (scripts/device-kit): PNG without OpenCV's imgcodecs, RUNPATH rewriting, the bare
   # Debian root its test runs in, and the libraries NVIDIA's Vulkan ICD needs that a GPU image may lack
   libpng-dev patchelf debootstrap libglvnd0 libx11-6 libxext6
+  # the MAVLink tests' independent decoder (node-mavlink, from npm below); npm too unless node has its own
+  nodejs
 )
 
 missing=()
@@ -36,26 +39,42 @@ for p in "${packages[@]}"; do
   status=$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null || true)
   [[ "$status" == "install ok installed" ]] || missing+=("$p")
 done
-[[ ${#missing[@]} -eq 0 ]] && exit 0
+# A nodejs that bundles npm (NodeSource's) conflicts with Debian's npm package: only without one.
+command -v npm >/dev/null || dpkg-query -W -f='${Status}' npm 2>/dev/null | grep -q "install ok installed" || missing+=(npm)
 
-echo "install-deps: installing ${missing[*]}"
-SUDO=""
-if [[ $(id -u) -ne 0 ]]; then
-  command -v sudo >/dev/null || { echo "install-deps: need root or sudo to install packages" >&2; exit 1; }
-  SUDO=sudo
+install_packages() {
+  echo "install-deps: installing ${missing[*]}"
+  SUDO=""
+  if [[ $(id -u) -ne 0 ]]; then
+    command -v sudo >/dev/null || { echo "install-deps: need root or sudo to install packages" >&2; exit 1; }
+    SUDO=sudo
+  fi
+  export DEBIAN_FRONTEND=noninteractive
+  # munge, slurmctld and slurmd start their daemons from their postinst (invoke-rc.d): in a container
+  # that fails the install (slurmctld has no slurm.conf) or leaves stray daemons behind. A policy-rc.d
+  # that refuses every start (exit 101, as Debian's docker images ship) keeps them stopped while we
+  # install; an existing policy is left as it is. tests/cluster starts its own daemons when it needs them.
+  policy=/usr/sbin/policy-rc.d
+  if [[ ! -e $policy ]]; then
+    printf '#!/bin/sh\n# installed by trnkit scripts/install-deps.sh for the duration of one install\nexit 101\n' |
+      $SUDO tee "$policy" >/dev/null
+    $SUDO chmod 755 "$policy"
+    trap '$SUDO rm -f "$policy"' EXIT
+  fi
+  $SUDO apt-get update -qq
+  $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+  echo "install-deps: done"
+}
+[[ ${#missing[@]} -eq 0 ]] || install_packages
+
+# The MAVLink tests' decoder, exactly as tests/mavlink/decoder/package-lock.json pins it, installed as
+# the invoking user (not root) into tests/mavlink/decoder/node_modules; again only when the lock changed.
+decoder="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)/tests/mavlink/decoder"
+if ! cmp -s "$decoder/package-lock.json" "$decoder/node_modules/.trnkit-installed-lock" 2>/dev/null; then
+  echo "install-deps: npm ci of the MAVLink test decoder (node-mavlink) in $decoder"
+  if ! (cd "$decoder" && npm ci --no-audit --no-fund --loglevel=error >/dev/null); then
+    echo "install-deps: npm could not install node-mavlink from the npm registry; the MAVLink decoder tests will SKIP" >&2
+    exit 1
+  fi
+  cp "$decoder/package-lock.json" "$decoder/node_modules/.trnkit-installed-lock"
 fi
-export DEBIAN_FRONTEND=noninteractive
-# munge, slurmctld and slurmd start their daemons from their postinst (invoke-rc.d): in a container
-# that fails the install (slurmctld has no slurm.conf) or leaves stray daemons behind. A policy-rc.d
-# that refuses every start (exit 101, as Debian's docker images ship) keeps them stopped while we
-# install; an existing policy is left as it is. tests/cluster starts its own daemons when it needs them.
-policy=/usr/sbin/policy-rc.d
-if [[ ! -e $policy ]]; then
-  printf '#!/bin/sh\n# installed by trnkit scripts/install-deps.sh for the duration of one install\nexit 101\n' |
-    $SUDO tee "$policy" >/dev/null
-  $SUDO chmod 755 "$policy"
-  trap '$SUDO rm -f "$policy"' EXIT
-fi
-$SUDO apt-get update -qq
-$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
-echo "install-deps: done"

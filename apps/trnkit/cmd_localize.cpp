@@ -14,6 +14,7 @@
 #include "field_flags.hpp"
 #include "filter_model_options.hpp"
 #include "heading_options.hpp"
+#include "mavlink_option.hpp"
 #include "odometry_option.hpp"
 #include "options.hpp"
 #include "photo_import_options.hpp"
@@ -59,6 +60,7 @@ struct LocalizeArgs {
     PhotoImportArgs photo;
     bool odometry_given = false, heading_given = false;
     std::string photo_options_given;  // the first import option given (they need --photos)
+    MavlinkArgs mavlink;              // --mavlink: estimates streamed out as they come
 };
 
 // With a uniform yaw prior the initial set must cover every yaw over the start disc: on the real
@@ -199,6 +201,10 @@ void localize(LocalizeArgs a) {
                     "," + std::to_string(start_y) + " is outside the " + std::to_string(map.image.width) + "x" +
                     std::to_string(map.image.height) + " px map");
 
+    if (!a.mavlink.target.empty() && !in.to_latlon)  // before the run: every message carries latitude/longitude
+        throw Error("--mavlink: needs latitude/longitude: " +
+                    (in.has_flight_json ? dataset + "/flight.json has no geo origin and the map is no GeoTIFF"
+                                        : "the map is no GeoTIFF and there is no flight.json with a geo origin"));
     std::unique_ptr<Backend> backend;
     if (a.backend == "fastest") {
         backend = default_registry().create_fastest(backend_options_from_environment());
@@ -236,6 +242,11 @@ void localize(LocalizeArgs a) {
                   << (compassless ? "no compass (yaw prior " + describe_yaw_prior(a.heading) + "), " : std::string()) << "seed " << a.seed << "\n";
     };
     hooks.progress = progress_bar;
+    std::unique_ptr<MavlinkOut> mavlink;
+    if (!a.mavlink.target.empty()) {
+        mavlink = std::make_unique<MavlinkOut>(a.mavlink, mpp, compassless);
+        hooks.step = [&](const localize::LocalizationRow& row, const localize::Estimate& e) { mavlink->step(row, e); };
+    }
     const localize::LocalizationResult result = localize::run_localization(spec, map, *backend, hooks);
     const bool has_latlon = in.to_latlon && !result.rows.empty();
 
@@ -276,6 +287,7 @@ void localize(LocalizeArgs a) {
                       c.max_m, c.compared);
         report.after_summary += line + std::string(localize::kCameraGpsCaveat) + ")\n";
     }
+    if (mavlink) report.after_summary += mavlink->summary();
     localize::write_localization_report(result, out, map.image.view(), mpp, report, std::cout);
 }
 
@@ -357,6 +369,7 @@ void add_localize_command(CLI::App& app) {
                         "Odometry fed to the filter: folder (metadata.csv's SvoX/SvoY) or visual (computed from the frames)");
     add_filter_model_options(*cmd, a->model);
     add_heading_options(*cmd, a->heading);
+    add_mavlink_options(*cmd, a->mavlink);
     cmd->callback([a, cmd] {
         a->odometry_given = cmd->count("--odometry") > 0, a->heading_given = cmd->count("--heading") > 0;
         for (const char* o : {"--altitude-agl", "--sensor-width-mm", "--ignore-orientation", "--map-origin"})

@@ -28,7 +28,7 @@ std::size_t stride_for(double fps, double rate_hz) {
 
 }  // namespace
 
-LocalizationResult run_localization(filter::FlightSource& source, Localizer& localizer, const ProgressFn& progress) {
+LocalizationResult run_localization(filter::FlightSource& source, Localizer& localizer, const ProgressFn& progress, const StepFn& on_step) {
     if (localizer.started()) throw Error("run_localization: the Localizer has already been started; give it a fresh one");
     LocalizationResult result;
     result.run = describe(localizer);
@@ -94,6 +94,7 @@ LocalizationResult run_localization(filter::FlightSource& source, Localizer& loc
         row.odometry_source = s.odometry_source;
         row.lock = e.lock;
         result.rows.push_back(row);
+        if (on_step) on_step(row, e);
         if (progress) progress(result.rows.size(), hint);
     }
     result.summary = summarise(result.rows, localizer.counters(), wall_s);
@@ -111,7 +112,17 @@ LocalizationResult run_on_map(const LocalizationSpec& spec, GrayView map, GrayVi
         if (hooks.started) hooks.started(info);
         Localizer localizer(map, metres_per_pixel, backend, cfg, valid);
         const bool use_visual = spec.odometry == OdometryKind::Visual;
-        result = run_localization(use_visual ? static_cast<filter::FlightSource&>(visual) : recorded, localizer, hooks.progress);
+        StepFn step;  // the row as the result will have it: with latitude / longitude
+        if (hooks.step)
+            step = [&](const LocalizationRow& r, const Estimate& e) {
+                LocalizationRow row = r;
+                if (spec.to_latlon) {
+                    const sim::LatLon ll = spec.to_latlon(r.estimate_x, r.estimate_y);
+                    row.estimate_lat = ll.latitude_deg, row.estimate_lon = ll.longitude_deg;
+                }
+                hooks.step(row, e);
+            };
+        result = run_localization(use_visual ? static_cast<filter::FlightSource&>(visual) : recorded, localizer, hooks.progress, step);
         result.run.stride = info.stride, result.run.frames = info.frames, result.run.filter_rate_hz = info.filter_rate_hz;
         result.run.visual_odometry = use_visual;
         if (use_visual) result.run.visual_odometry_counts = visual.counts();

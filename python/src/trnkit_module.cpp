@@ -9,6 +9,7 @@
 #include "py_energy.hpp"
 #include "py_errors.hpp"
 #include "py_localize.hpp"
+#include "py_mavlink.hpp"
 #include "trn/build_info.hpp"
 
 PYBIND11_MODULE(_trnkit, m) {
@@ -19,4 +20,5 @@ PYBIND11_MODULE(_trnkit, m) {
     trn::py::register_backend(m);
     trn::py::register_energy(m);
     trn::py::register_localize(m);
+    trn::py::register_mavlink(m);
 }

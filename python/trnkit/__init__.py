@@ -1,6 +1,7 @@
 """trnkit: batched particle scoring (NCC, CC, SSD) of poses against an orthophoto map, Sobel, the
-DPC-PFL localizer (Localizer, localize, read_air_folder) and energy measurement, on the cpu-ref,
-cpu, OpenCL and Vulkan backends (docs/EMBEDDING.md).
+DPC-PFL localizer (Localizer, localize, read_air_folder), its estimates as MAVLink v2 for an
+autopilot (MavlinkEncoder) and energy measurement, on the cpu-ref, cpu, OpenCL and Vulkan backends
+(docs/EMBEDDING.md).
 
 Conventions (trn/scoring.hpp):
   * Images are 2-D NumPy arrays (height, width); a map is uint8 grey levels, a template uint8 or
@@ -23,14 +24,16 @@ from ._trnkit import (FLAT_PATCH, FLAT_TEMPLATE, SCORE_DTYPE, TOO_FEW_SAMPLES, B
 from ._backend import Backend, PhaseTimes, YawUnitWarning, devices, families, plan
 from ._energy import MeasurementWindows, PowerSampler, PowerTrace, integrate_energy, power_sources
 from ._localize import Localizer, load_gray, load_validity, localize, read_air_folder
+from ._mavlink import MavlinkEncoder
 
 __all__ = [
-    "Backend", "BackendUnavailable", "Error", "FLAT_PATCH", "FLAT_TEMPLATE", "Localizer", "Map", "MeasurementWindows", "PhaseTimes",
+    "Backend", "BackendUnavailable", "Error", "FLAT_PATCH", "FLAT_TEMPLATE", "Localizer", "Map", "MavlinkEncoder", "MeasurementWindows",
+    "PhaseTimes",
     "Plan", "PowerSampler", "PowerTrace", "SCORE_DTYPE", "Sampling", "TOO_FEW_SAMPLES", "YawUnitWarning", "devices",
     "families", "git_commit", "integrate_energy", "load_gray", "load_validity", "localize", "plan", "power_sources", "read_air_folder",
 ]
 
 # Every public class says it is trnkit's (repr, help, pickle), not trnkit._trnkit's or trnkit._backend's.
-for _cls in (Backend, Localizer, Map, MeasurementWindows, PhaseTimes, Plan, PowerSampler, PowerTrace, Sampling, YawUnitWarning):
+for _cls in (Backend, Localizer, Map, MavlinkEncoder, MeasurementWindows, PhaseTimes, Plan, PowerSampler, PowerTrace, Sampling, YawUnitWarning):
     _cls.__module__ = __name__
 del _cls

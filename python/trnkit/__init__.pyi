@@ -1,7 +1,7 @@
 # Type stubs of the trnkit package (shipped with it; tests/python/test_package.py checks that every
 # public callable here has the runtime signature it states). Units: see the module docstring.
 import os
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
 from contextlib import AbstractContextManager
 from typing import Any, Literal, NamedTuple, overload
 
@@ -182,3 +182,12 @@ def localize(*, dataset: str, map: str = "", backend: Backend | str = "cpu", met
              out: str = "", plots: bool = False, heading: Literal["compass", "none"] = "compass",
              start_heading_sd_deg: float | None = None, nodata: int | None = None,
              profile: Literal["ours", "dissertation"] = "ours", lock_monitor: bool | None = None) -> dict[str, Any]: ...
+
+class MavlinkEncoder:
+    def __init__(self, *, system_id: int = 1, component_id: int = 197,
+                 messages: str | Iterable[Literal["gps_input", "global_position", "odometry"]] = ("gps_input", "global_position", "odometry"),
+                 sensor_id: int = 0, satellites: int = 10) -> None: ...
+    def encode(self, *, time_us: int, valid: bool, reset: bool = False, lat_deg: float = ..., lon_deg: float = ...,
+               alt_msl_m: float = ..., north_m: float = ..., east_m: float = ..., cov_nn: float = ..., cov_ne: float = ...,
+               cov_ee: float = ..., spread_m: float = ..., vel_north: float = ..., vel_east: float = ..., vel_var: float = ...,
+               yaw_rad: float = ..., yaw_var: float = ..., processing_us: int = 0) -> bytes: ...

@@ -1,5 +1,6 @@
 /* trnkit C API: the accelerated scorer (devices, map upload, plan + score, Sobel), the energy
- * integration and the localizer (with AIR-folder reading), for C and for anything with a C FFI.
+ * integration, the localizer (with AIR-folder reading) and a MAVLink v2 encoder of its estimates,
+ * for C and for anything with a C FFI.
  *
  * Conventions
  *  - Every call that can fail returns a trn_status; TRN_OK is 0. On failure trn_last_error()
@@ -307,6 +308,51 @@ TRN_C_API trn_status trn_air_reader_open(const char* folder, trn_air_reader** ou
 /* *has_row = 1 and *out filled, or *has_row = 0 at the end. */
 TRN_C_API trn_status trn_air_reader_next(trn_air_reader* reader, trn_air_row* out, int* has_row);
 TRN_C_API void trn_air_reader_destroy(trn_air_reader* reader);
+
+/* ---- MAVLink v2 out ------------------------------------------------------------------------ */
+/* One estimate as MAVLink v2 frames for an autopilot (C++: trn::io::mavlink::Stream, the module
+ * `trnkit localize --mavlink` uses; the mapping and the autopilots' parameters: docs/AUTOPILOT.md):
+ * a HEARTBEAT when a second of time_us has passed since the last (and first), then GPS_INPUT (232),
+ * GLOBAL_POSITION_SENSOR (296) and ODOMETRY (331) as `messages` selects. Send the bytes as one UDP
+ * datagram or write them to a serial port. NaN in a field: not known (sent as unknown / ignored). */
+typedef struct trn_nav_fix {
+    uint64_t time_us;             /* the frame's time: UNIX epoch or since boot, microseconds */
+    int valid;                    /* 0: lost / no position: "no fix" is sent */
+    int reset;                    /* nonzero: the estimate jumped (ODOMETRY's reset_counter steps) */
+    double lat_deg, lon_deg;      /* WGS84 */
+    double alt_msl_m;             /* above mean sea level */
+    double north_m, east_m;       /* in a fixed local frame (ODOMETRY), metres from its origin */
+    double cov_nn, cov_ne, cov_ee; /* horizontal position covariance, m^2 (north, east) */
+    double spread_m;              /* rms distance of the estimate's samples: eph when there is no covariance */
+    double vel_north, vel_east;   /* m/s */
+    double vel_var;               /* m^2/s^2 per axis */
+    double yaw_rad, yaw_var;      /* heading clockwise from true north; rad^2 */
+    uint32_t processing_us;       /* frame to message, microseconds (GLOBAL_POSITION_SENSOR) */
+} trn_nav_fix;
+/* time 0, not valid, no reset, every number NaN, processing 0. */
+TRN_C_API trn_nav_fix trn_nav_fix_default(void);
+
+#define TRN_MAVLINK_GPS_INPUT 1u       /* GPS_INPUT: ArduPilot's GPS1_TYPE 14 (MAV) */
+#define TRN_MAVLINK_GLOBAL_POSITION 2u /* GLOBAL_POSITION_SENSOR: PX4's auxiliary global position */
+#define TRN_MAVLINK_ODOMETRY 4u        /* ODOMETRY: external vision (PX4 EKF2_EV_CTRL, ArduPilot VISO_TYPE 1) */
+#define TRN_MAVLINK_MAX_BYTES 512      /* a buffer this large always takes one estimate's frames */
+typedef struct trn_mavlink_options {
+    uint8_t system_id, component_id; /* 1 (the vehicle's), 197 (MAV_COMP_ID_VISUAL_INERTIAL_ODOMETRY) */
+    unsigned messages;               /* TRN_MAVLINK_* bits (all three) */
+    uint8_t sensor_id;               /* GPS_INPUT gps_id, GLOBAL_POSITION_SENSOR id (0) */
+    uint8_t satellites;              /* GPS_INPUT satellites_visible with a fix (10; ArduPilot wants >= 6) */
+} trn_mavlink_options;
+TRN_C_API trn_mavlink_options trn_mavlink_options_default(void);
+
+typedef struct trn_mavlink_encoder trn_mavlink_encoder;
+/* options NULL: the defaults. */
+TRN_C_API trn_status trn_mavlink_encoder_create(const trn_mavlink_options* options, trn_mavlink_encoder** out);
+/* Writes the frames for `fix` to buffer and their length to *size. A fix out of range (latitude,
+ * a negative variance ...) or a buffer too small is TRN_ERR_INVALID_ARGUMENT naming it, and the
+ * encoder is left as it was (its sequence number and heartbeat clock). */
+TRN_C_API trn_status trn_mavlink_encode(trn_mavlink_encoder* encoder, const trn_nav_fix* fix, uint8_t* buffer, size_t capacity,
+                                        size_t* size);
+TRN_C_API void trn_mavlink_encoder_destroy(trn_mavlink_encoder* encoder);
 
 #ifdef __cplusplus
 }

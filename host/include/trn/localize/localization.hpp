@@ -86,6 +86,8 @@ struct LocalizationResult {
 
 // Progress: (samples done, samples expected or 0).
 using ProgressFn = std::function<void(std::size_t, std::size_t)>;
+// After each filter step: its row (estimate_lat/lon filled when the map is georeferenced) and estimate.
+using StepFn = std::function<void(const LocalizationRow&, const Estimate&)>;
 
 // A recorded flight: an AIR folder (metadata.csv and frames).
 struct AirFolderFlight {
@@ -121,6 +123,7 @@ struct RunHooks {
     std::function<void(const RunInfo&)> started;
     std::function<void(const std::string&)> warning;
     ProgressFn progress;
+    StepFn step;  // e.g. streaming each estimate out (trnkit localize --mavlink)
 };
 
 // Localizes the whole flight of `spec` on `map` (metres_per_pixel: the map's) with `backend`.
@@ -132,7 +135,8 @@ LocalizationResult run_localization(const LocalizationSpec& spec, const sim::Map
 
 // The same over any flight source with a Localizer already built (tests, custom sources). Its start
 // is config.start_*, else the first sample's ground truth.
-LocalizationResult run_localization(filter::FlightSource& source, Localizer& localizer, const ProgressFn& progress = {});
+LocalizationResult run_localization(filter::FlightSource& source, Localizer& localizer, const ProgressFn& progress = {},
+                                    const StepFn& on_step = {});
 
 // Least-squares line of y over x (NaN with fewer than two distinct x).
 struct FittedLine {
