@@ -347,6 +347,14 @@ PowerTrace parse_ina219_csv(std::string_view input, const std::string& name, con
             if (const auto v = number_at(r, bus)) bus_values.push_back(std::abs(*v * bus.scale));
     const std::string source = o.text("source", vi && median_of(bus_values) <= 60 ? "rail" : "node");
     b.power_source(source, o);
+    if (!vi && !o.text("power_unit"))
+        for (const auto& p : powers) {
+            if (p.index < 0 || !unit_scale_from_name(p.name)) continue;
+            std::vector<double> raw;
+            for (const auto& r : rows)
+                if (const auto x = number_at(r, p)) raw.push_back(*x);
+            check_power_unit_against_source(name, p.name, p.scale, raw, b.power_source(), "power_unit");
+        }
     for (auto& n : unit_notes) b.note(std::move(n));
     if (decimal_commas)
         b.note(delim == ',' ? "decimal commas under a ',' separator: every row has twice the header's fields, read as value pairs 'int,frac'"
