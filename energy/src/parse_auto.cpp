@@ -5,6 +5,7 @@
 
 #include "text_input.hpp"
 #include "trn/energy/parsers.hpp"
+#include "trn/energy/run_summaries.hpp"
 #include "trn/energy/time_zone.hpp"
 
 namespace trn::energy {
@@ -51,6 +52,7 @@ std::string detect_power_log_format(std::string_view input, const std::string& n
     const std::string_view l = text::trim(lines[first].text);
     if (text::starts_with(l, "# trnkit-power")) return "trnkit";
     if (text::starts_with(l, "# SIMULATED INA219")) return "ina219-raw";
+    if (looks_like_codecarbon(input)) return "codecarbon";
     for (const auto& line : lines) {  // a raw register header after comments
         const auto s = text::trim(line.text);
         if (s.empty() || s.front() == '#') continue;

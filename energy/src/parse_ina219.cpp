@@ -15,6 +15,7 @@ namespace trn::energy {
 namespace {
 
 using text::Line;
+using text::split_fields;
 
 bool is_comment(std::string_view l) {
     l = text::trim(l);
@@ -31,33 +32,6 @@ char detect_delimiter(std::string_view line) {
         if (n > most) most = n, best = c;
     }
     return best;
-}
-
-// Fields of one row: double-quoted fields keep their separators ("30,3"), "" is a quote.
-std::vector<std::string> split_fields(std::string_view line, char delim) {
-    std::vector<std::string> out;
-    if (delim == 0) {
-        for (auto f : text::split_ws(line)) out.emplace_back(f);
-        return out;
-    }
-    std::string cur;
-    bool quoted = false;
-    for (std::size_t i = 0; i < line.size(); ++i) {
-        const char c = line[i];
-        if (quoted) {
-            if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') cur += '"', ++i;
-            else if (c == '"') quoted = false;
-            else cur += c;
-        } else if (c == '"' && text::trim(cur).empty()) {
-            cur.clear(), quoted = true;
-        } else if (c == delim) {
-            out.push_back(std::string(text::trim(cur))), cur.clear();
-        } else {
-            cur += c;
-        }
-    }
-    out.push_back(std::string(text::trim(cur)));
-    return out;
 }
 
 // "30,3" / "-0,25": a number written with a decimal comma (one comma, digits on both sides).

@@ -53,6 +53,32 @@ std::vector<std::string_view> split_ws(std::string_view s) {
     return out;
 }
 
+std::vector<std::string> split_fields(std::string_view line, char delim) {
+    std::vector<std::string> out;
+    if (delim == 0) {
+        for (auto f : text::split_ws(line)) out.emplace_back(f);
+        return out;
+    }
+    std::string cur;
+    bool quoted = false;
+    for (std::size_t i = 0; i < line.size(); ++i) {
+        const char c = line[i];
+        if (quoted) {
+            if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') cur += '"', ++i;
+            else if (c == '"') quoted = false;
+            else cur += c;
+        } else if (c == '"' && text::trim(cur).empty()) {
+            cur.clear(), quoted = true;
+        } else if (c == delim) {
+            out.push_back(std::string(text::trim(cur))), cur.clear();
+        } else {
+            cur += c;
+        }
+    }
+    out.push_back(std::string(text::trim(cur)));
+    return out;
+}
+
 std::string lower(std::string_view s) {
     std::string out(s);
     std::transform(out.begin(), out.end(), out.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });

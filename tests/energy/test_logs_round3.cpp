@@ -7,6 +7,7 @@
 
 #include "trn/energy/integrate.hpp"
 #include "trn/energy/parsers.hpp"
+#include "trn/energy/run_summaries.hpp"
 #include "trn/error.hpp"
 
 namespace trn::energy {
@@ -61,6 +62,53 @@ TEST(UnitsAgainstSource, KilowattHeaderOverAUsbDeviceIsRefused) {
     EXPECT_NE(why.find("more than a USB-powered device"), std::string::npos) << why;
     EXPECT_NE(why.find("in W they would be 2.5 to 5.1 W"), std::string::npos) << why;
     EXPECT_DOUBLE_EQ(parse_power_log(usb, "u.csv", "ina219-csv", {{"source", "usb"}, {"power_unit", "W"}}).w[1], 4.8);
+}
+
+// Item 3 (CodeCarbon): per-run summaries, never a trace, machines never summed.
+const std::string kCodeCarbon =
+    "timestamp,project_name,run_id,duration,emissions,emissions_rate,cpu_power,gpu_power,ram_power,cpu_energy,gpu_energy,ram_energy,"
+    "energy_consumed,country_name,os,python_version,codecarbon_version,cpu_count,cpu_model,gpu_count,gpu_model,ram_total_size,tracking_mode\n"
+    "2024-05-02T10:00:00,demo,r1,60.0,1e-05,1.6e-07,42.5,0,3.0,0.000708,0,0.00005,0.000758,Germany,Linux,3.11,2.3.4,8,\"Intel(R) Xeon(R), 2.1GHz\",0,,31.3,machine\n"
+    "2024-05-02T10:00:05,demo,r2,30.0,1e-05,1.6e-07,150,250,3.0,0.00125,0.002083,0.000025,0.003358,Germany,Linux,3.11,2.3.4,16,AMD EPYC 7302,1,"
+    "1 x NVIDIA A100,251.7,machine\n"
+    "2024-05-02T10:10:00,demo,r3,60.0,1e-05,1.6e-07,42.5,0,3.0,0.000708,0,0.00005,0.000758,Germany,Linux,3.11,2.3.4,8,\"Intel(R) Xeon(R), 2.1GHz\",0,,31.3,machine\n";
+
+TEST(CodeCarbon, RefusedAsATraceNamingTheRunsCommand) {
+    EXPECT_EQ(detect_power_log_format(kCodeCarbon, "emissions.csv"), "codecarbon");
+    const std::string why = error_of(kCodeCarbon);
+    EXPECT_NE(why.find("x.log:1: a CodeCarbon emissions.csv: 3 run(s) on 2 machine(s)"), std::string::npos) << why;
+    EXPECT_NE(why.find("not a power trace"), std::string::npos) << why;
+    EXPECT_NE(why.find("trnkit energy runs x.log"), std::string::npos) << why;
+    // power=sum over its power columns, the old misread, is refused the same way (format named or not)
+    EXPECT_NE(error_of(kCodeCarbon, "auto", {{"power", "sum"}}).find("CodeCarbon"), std::string::npos);
+}
+
+TEST(CodeCarbon, RunsAndTheirJoulesPerMachine) {
+    const RunSummaries s = parse_codecarbon_runs(kCodeCarbon, "emissions.csv");
+    ASSERT_EQ(s.runs.size(), 3u);
+    ASSERT_EQ(s.machines.size(), 2u);
+    EXPECT_NEAR(s.runs[0].energy_j, 0.000758 * 3.6e6, 1e-9);  // kWh -> J
+    EXPECT_NEAR(*s.runs[0].cpu_j, 0.000708 * 3.6e6, 1e-9);
+    EXPECT_DOUBLE_EQ(s.runs[1].duration_s, 30.0);
+    EXPECT_EQ(s.runs[1].run_id, "r2");
+    EXPECT_EQ(s.runs[0].machine, s.runs[2].machine);  // the quoted cpu_model with a comma is one field
+    EXPECT_NE(s.runs[0].machine, s.runs[1].machine);
+    EXPECT_NEAR(s.machine_energy_j(s.machines[0]), 2 * 0.000758 * 3.6e6, 1e-9);  // r1 + r3, the 10 min gap not interpolated
+    EXPECT_NEAR(s.machine_energy_j(s.machines[1]), 0.003358 * 3.6e6, 1e-9);
+    EXPECT_TRUE(mentions(s.notes, "2 machines in one file"));
+    EXPECT_TRUE(mentions(s.notes, "never summed across machines"));
+    const std::string table = format_run_summaries(s);
+    EXPECT_NE(table.find("3 run(s) on 2 machine(s)"), std::string::npos) << table;
+    EXPECT_NE(table.find("machine 1: 2 run(s), 120 s measured, 5457.6 J"), std::string::npos) << table;
+    // Bad rows name file:line.
+    std::string bad = kCodeCarbon;
+    bad.replace(bad.find(",0.003358,"), 10, ",-0.003358,");
+    try {
+        parse_codecarbon_runs(bad, "e.csv");
+        ADD_FAILURE() << "a negative energy was accepted";
+    } catch (const trn::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("e.csv:3: energy_consumed (kWh) -0.003358 is negative"), std::string::npos) << e.what();
+    }
 }
 
 }  // namespace

@@ -68,6 +68,10 @@ PowerTrace parse_powerjoular(std::string_view text, const std::string& name, con
 // "# trnkit-power v1 kind=instant|interval-mean ..." then t_s,power_w lines.
 PowerTrace parse_trnkit_power(std::string_view text, const std::string& name, const ParseOptions& options = {});
 
+// CodeCarbon emissions.csv: per-run summaries, not a trace; always refused here, naming
+// `trnkit energy runs` (parse_codecarbon_runs in run_summaries.hpp reads the runs).
+[[noreturn]] PowerTrace parse_codecarbon(std::string_view text, const std::string& name, const ParseOptions& options = {});
+
 // Every format above by name; "auto" recognises a format from the text or refuses, saying why.
 std::vector<std::string> power_log_formats();
 std::string detect_power_log_format(std::string_view text, const std::string& name);
