@@ -5,8 +5,10 @@
 #include <cstdio>
 #include <functional>
 #include <map>
+#include <set>
 
 #include "option_reader.hpp"
+#include "series.hpp"
 #include "trace_builder.hpp"
 #include "trn/energy/ina219.hpp"
 #include "trn/energy/parsers.hpp"
@@ -70,6 +72,31 @@ double unit_scale(const std::string& unit, const std::string& option, const std:
     return it->second;
 }
 
+// Joules per unit of an energy counter: uJ (powercap energy_uj), mJ, J, mWh, Wh, kWh.
+const std::vector<std::pair<std::string, double>>& energy_units() {
+    static const std::vector<std::pair<std::string, double>> units = {{"kwh", 3.6e6}, {"mwh", 3.6}, {"wh", 3600}, {"uj", 1e-6},
+                                                                      {"\xc2\xb5j", 1e-6}, {"\xce\xbcj", 1e-6}, {"mj", 1e-3}, {"joules", 1}, {"joule", 1}, {"j", 1}};
+    return units;
+}
+
+double energy_unit_scale(const std::string& unit, const std::string& parser) {
+    for (const auto& [u, scale] : energy_units())
+        if (text::lower(unit) == u) return scale;
+    throw Error(parser + ": option energy_unit='" + unit + "' is not an energy unit (uJ, mJ, J, mWh, Wh, kWh)");
+}
+
+// "energy_uj", "Energy [kWh]", "cumulative_energy_wh", "pkg_joules" -> joules per unit.
+std::optional<double> energy_scale_from_name(const std::string& name) {
+    const std::string n = text::lower(name);
+    for (const auto& [u, scale] : energy_units())
+        for (const std::string& wrap : {"_" + u, "[" + u + "]", "(" + u + ")", " " + u, "/" + u})
+            if (n.size() >= wrap.size() && (n.compare(n.size() - wrap.size(), wrap.size(), wrap) == 0 ||
+                                            ((wrap[0] == '[' || wrap[0] == '(') && n.find(wrap) != std::string::npos)))
+                return scale;
+    if (n.find("joule") != std::string::npos) return 1.0;
+    return std::nullopt;
+}
+
 struct Column {
     int index = -1;
     double scale = 1;
@@ -91,7 +118,8 @@ double median_step(const std::vector<double>& t) {
 PowerTrace parse_ina219_csv(std::string_view input, const std::string& name, const ParseOptions& options) {
     const std::string parser = name + " (ina219-csv)";
     OptionReader o(options, parser, {"columns", "time", "bus_v", "shunt_v", "current", "power", "time_unit", "period_s",
-                                     "bus_v_unit", "current_unit", "power_unit", "use", "source", "max_power_w"});
+                                     "bus_v_unit", "current_unit", "power_unit", "use", "source", "max_power_w", "energy", "energy_unit",
+                                     "max_energy_range_uj", "series"});
     const auto lines = text::split_lines(input);
     std::size_t first = 0;
     while (first < lines.size() && is_comment(lines[first].text)) ++first;
@@ -220,15 +248,41 @@ PowerTrace parse_ina219_csv(std::string_view input, const std::string& name, con
     if (time.index < 0) throw Error(parser + ": no time column among '" + std::string(lines[first].text.substr(0, 200)) + "'; pass time=NAME");
     const std::string use = o.text("use", "vi");
     if (use != "vi" && use != "power") throw Error(parser + ": option use must be vi or power");
-    const bool vi = bus.index >= 0 && current.index >= 0 && !(use == "power" && !powers.empty());
-    if (!vi && powers.empty()) throw Error(parser + ": needs a power column or bus voltage and current columns");
-    if (!vi && powers.size() > 1 && power_option != "sum") {
+    // A cumulative energy column (energy_uj, J, mWh, kWh) is read as a counter: its differences
+    // over time are the power. Taken when named (energy=) or when there is nothing else to read.
+    Column energy;
+    if (o.text("energy")) {
+        energy = find("energy", [](const std::string&) { return false; });
+        powers.clear();
+    } else if (!(bus.index >= 0 && current.index >= 0) && powers.empty()) {
+        std::vector<Column> energies;
+        for (std::size_t i = 0; i < names.size(); ++i)
+            if (static_cast<int>(i) != time.index && energy_like(text::lower(names[i]))) energies.push_back({static_cast<int>(i), 1, names[i]});
+        if (energies.size() > 1) {
+            std::string list;
+            for (const auto& e : energies) list += (list.empty() ? "'" : ", '") + e.name + "'";
+            throw Error(parser + ": " + std::to_string(energies.size()) + " energy columns (" + list +
+                        ") and no power column: pass energy=NAME for the cumulative counter to read; none is picked silently");
+        }
+        if (!energies.empty()) energy = energies.front();
+    }
+    const bool counter = energy.index >= 0;
+    const bool vi = !counter && bus.index >= 0 && current.index >= 0 && !(use == "power" && !powers.empty());
+    if (!vi && !counter && powers.empty())
+        throw Error(parser + ": needs a power column, bus voltage and current columns, or a cumulative energy column (energy_uj, energy_J, ..._kWh)");
+    if (counter) {
+        if (const auto u = o.text("energy_unit")) energy.scale = energy_unit_scale(*u, parser);
+        else if (const auto sc = energy_scale_from_name(energy.name)) energy.scale = *sc;
+        else
+            throw Error(parser + ": energy column '" + energy.name + "' has no unit in its name (uJ? J? Wh? kWh?); pass energy_unit=uJ, mJ, J, mWh, Wh or kWh");
+    }
+    if (!vi && !counter && powers.size() > 1 && power_option != "sum") {
         std::string list;
         for (const auto& p : powers) list += (list.empty() ? "'" : ", '") + p.name + "'";
         throw Error(parser + ": " + std::to_string(powers.size()) + " power columns (" + list +
                     "): pass power=NAME for one of them or power=sum for their sum; none is picked silently");
     }
-    if (vi || power_option != "sum") powers.resize(1);
+    if (vi || counter || power_option != "sum") powers.resize(1);
 
     auto number_at = [&](const Row& r, const Column& c) -> std::optional<double> {
         if (c.index < 0 || static_cast<std::size_t>(c.index) >= r.f.size()) return std::nullopt;
@@ -321,7 +375,7 @@ PowerTrace parse_ina219_csv(std::string_view input, const std::string& name, con
             if (const auto v = number_at(r, bus)) bus_values.push_back(std::abs(*v * bus.scale));
     const std::string source = o.text("source", vi && median_of(bus_values) <= 60 ? "rail" : "node");
     b.power_source(source, o);
-    if (!vi && !o.text("power_unit"))
+    if (!vi && !counter && !o.text("power_unit"))
         for (const auto& p : powers) {
             if (p.index < 0 || !unit_scale_from_name(p.name)) continue;
             std::vector<double> raw;
@@ -334,10 +388,39 @@ PowerTrace parse_ina219_csv(std::string_view input, const std::string& name, con
         b.note(delim == ',' ? "decimal commas under a ',' separator: every row has twice the header's fields, read as value pairs 'int,frac'"
                             : "decimal commas (a comma-decimal locale, separator " + delim_name + ") read as decimal points");
     std::string quantity;
-    if (vi) quantity = bus.name + "*" + current.name;
+    if (counter) quantity = energy.name + " (cumulative energy counter; power = its differences over time)";
+    else if (vi) quantity = bus.name + "*" + current.name;
     else
         for (const auto& p : powers) quantity += (quantity.empty() ? "" : "+") + p.name;
     b.trace().quantity = quantity;
+    // Key columns of a long-form log (one row per device x domain x time): the columns read for
+    // nothing else whose values tell series apart, and any column series= names.
+    std::vector<int> key_cols;
+    {
+        std::set<int> used = {time.index, date_col, shunt.index, bus.index, current.index, energy.index};
+        for (const auto& p : powers) used.insert(p.index);
+        std::set<std::string> named;
+        if (const auto sel = o.text("series"); sel && *sel != "all")
+            for (auto clause : text::split(sel->rfind("sum:", 0) == 0 ? sel->substr(4) : *sel, ','))
+                named.insert(text::lower(text::trim(clause.substr(0, clause.find('=')))));
+        for (std::size_t i = 0; i < ncols; ++i) {
+            if (used.count(static_cast<int>(i))) continue;
+            std::vector<std::string> values;
+            for (const auto& r : rows)
+                if (i < r.f.size()) values.push_back(r.f[i]);
+            if (named.count(text::lower(names[i])) || series::is_key_column(names[i], values)) key_cols.push_back(static_cast<int>(i));
+        }
+    }
+    std::vector<series::Key> series_keys;
+    auto series_of = [&](const Row& r) {
+        series::Key k;
+        for (int c : key_cols) k.push_back({names[c], static_cast<std::size_t>(c) < r.f.size() ? r.f[c] : ""});
+        const auto it = std::find(series_keys.begin(), series_keys.end(), k);
+        if (it != series_keys.end()) return static_cast<std::size_t>(it - series_keys.begin());
+        series_keys.push_back(std::move(k));
+        return series_keys.size() - 1;
+    };
+    std::vector<series::Sample> samples;
     std::size_t bad = 0, first_bad = 0;
     std::vector<double> vi_ratio;
     bool zone_known = true;
@@ -362,7 +445,9 @@ PowerTrace parse_ina219_csv(std::string_view input, const std::string& name, con
             }
         }
         std::optional<double> w;
-        if (vi) {
+        if (counter) {
+            w = get(energy);  // joules so far
+        } else if (vi) {
             const auto v = get(bus), i = get(current);
             if (v && i) w = *v * *i;
             if (const auto p = get(powers[0]); w && p && std::abs(*w) > 1e-3) vi_ratio.push_back(*p / *w);
@@ -378,13 +463,37 @@ PowerTrace parse_ina219_csv(std::string_view input, const std::string& name, con
         }
         if (!t || !w) {
             if (bad++ == 0) first_bad = r.line;
-            b.drop(r.line, "missing or unreadable time/power fields");
+            b.drop(r.line, counter ? "missing or unreadable time/energy fields" : "missing or unreadable time/power fields");
             continue;
         }
-        b.add(r.line, *t, *w);
+        samples.push_back({r.line, *t, *w, series_of(r)});
     }
     if (bad * 2 > rows.size() && bad > 0)
         text::fail(name, first_bad, "most rows are unreadable (" + std::to_string(bad) + "); check columns/delimiter");
+    const series::Selection sel = series::select(series_keys, o.text("series"), parser, "rows");
+    if (series_keys.size() > 1 || o.text("series"))
+        b.note(std::string(sel.sum ? "power is the sum of series " : "series ") + sel.described + " (series=" + o.text("series", "") + ") of " +
+               std::to_string(series_keys.size()) + " in this long-form log" + (sel.sum ? ", per poll at its first row's time" : ""));
+    if (sel.sum) b.trace().quantity = "sum of " + b.trace().quantity + " over " + sel.described;
+    else if (series_keys.size() > 1) b.trace().quantity += " of " + sel.described;
+    std::vector<series::Sample> out;
+    for (const auto& x : samples)
+        if (sel.chosen[x.series]) out.push_back(x);
+    if (counter) {
+        const double range_uj = o.number("max_energy_range_uj", 0);
+        if (o.text("max_energy_range_uj") && !(range_uj > 0)) throw Error(parser + ": option max_energy_range_uj must be > 0");
+        std::vector<std::optional<double>> start;
+        std::size_t wraps = 0;
+        out = series::counter_to_power(out, series_keys.size(), range_uj * 1e-6, name, energy.name, start, wraps, b);
+        b.trace().kind = SampleKind::IntervalMean;
+        for (const auto& st : start)
+            if (st && (!b.trace().first_interval_start || *st < *b.trace().first_interval_start)) b.trace().first_interval_start = st;
+        b.note("energy counter '" + energy.name + "' read as differences: each reading's power is the mean over the interval since the one before "
+               "(the first reading starts the first interval); whole-log joules are the counter's rise");
+        if (wraps) b.note(std::to_string(wraps) + " counter wrap(s) unwrapped at max_energy_range_uj=" + o.text("max_energy_range_uj", ""));
+    }
+    if (sel.sum) out = series::sum_per_poll(out, sel.chosen, name, b);
+    for (const auto& x : out) b.add(x.line, x.t, x.v);
     if (!vi_ratio.empty()) {
         std::nth_element(vi_ratio.begin(), vi_ratio.begin() + vi_ratio.size() / 2, vi_ratio.end());
         const double r = vi_ratio[vi_ratio.size() / 2];

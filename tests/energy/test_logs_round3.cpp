@@ -111,5 +111,124 @@ TEST(CodeCarbon, RunsAndTheirJoulesPerMachine) {
     }
 }
 
+// Item 2: long ("tidy") logs split into series, never interleaved or summed silently.
+// A rapl-trace-like log: one row per socket x domain per poll, power in W. Socket 0 package 20 W,
+// socket 0 dram 5 W, socket 1 package 30 W, socket 1 dram 6 W.
+std::string tidy_power_log(int polls) {
+    std::string s = "time_s,socket,domain,power_W\n";
+    for (int k = 0; k < polls; ++k) {
+        const std::string t = std::to_string(k) + ".0";
+        s += t + ",0,package," + std::to_string(20 + k % 2) + "\n";
+        s += t + ",0,dram,5\n";
+        s += t + ",1,package,30\n";
+        s += t + ",1,dram,6\n";
+    }
+    return s;
+}
+
+TEST(LongFormLogs, SeveralSeriesAreRefusedUntilOneOrAllIsNamed) {
+    const std::string log = tidy_power_log(5);
+    const std::string why = error_of(log);
+    EXPECT_NE(why.find("4 series in one long-form log"), std::string::npos) << why;
+    EXPECT_NE(why.find("socket x domain"), std::string::npos) << why;
+    EXPECT_NE(why.find("socket=1,domain=dram"), std::string::npos) << why;
+    EXPECT_NE(why.find("series=all"), std::string::npos) << why;
+    // one series
+    const PowerTrace one = parse_power_log(log, "t.csv", "auto", {{"series", "socket=1,domain=package"}});
+    ASSERT_EQ(one.size(), 5u);
+    EXPECT_DOUBLE_EQ(one.w[0], 30);
+    EXPECT_NEAR(joules(one), 4 * 30, 1e-9);
+    // a selection that leaves two is refused, naming the sum
+    const std::string two = error_of(log, "auto", {{"series", "domain=package"}});
+    EXPECT_NE(two.find("leaves 2 series"), std::string::npos) << two;
+    EXPECT_NE(two.find("series=sum:domain=package"), std::string::npos) << two;
+    const PowerTrace pk = parse_power_log(log, "t.csv", "auto", {{"series", "sum:domain=package"}});
+    EXPECT_DOUBLE_EQ(pk.w[0], 50);
+    EXPECT_DOUBLE_EQ(pk.w[1], 51);
+    // all four per poll: 61 W (62 W on odd polls), 5 polls, not a sawtooth of 20 samples
+    const PowerTrace all = parse_power_log(log, "t.csv", "auto", {{"series", "all"}});
+    ASSERT_EQ(all.size(), 5u);
+    EXPECT_DOUBLE_EQ(all.w[0], 61);
+    EXPECT_NEAR(joules(all), 61.5 * 4, 1e-9);
+    EXPECT_TRUE(mentions(all.notes, "sum of series"));
+    // unknown key or value
+    EXPECT_NE(error_of(log, "auto", {{"series", "rack=1"}}).find("'rack' is not a key column"), std::string::npos);
+    EXPECT_NE(error_of(log, "auto", {{"series", "domain=gpu"}}).find("matches none"), std::string::npos);
+    // a log with one series (a constant text column) reads as before
+    EXPECT_EQ(parse_power_log("time_s,sensor,power_W\n0,INA219,5\n1,INA219,6\n2,INA219,7\n3,INA219,8\n", "c.csv").size(), 4u);
+}
+
+TEST(LongFormLogs, NestedRaplDomainsAreNotSummed) {
+    std::string log = "time_s,domain,power_W\n";
+    for (int k = 0; k < 4; ++k) log += std::to_string(k) + ",package-0,20\n" + std::to_string(k) + ",core,12\n" + std::to_string(k) + ",dram,4\n";
+    const std::string why = error_of(log, "auto", {{"series", "all"}});
+    EXPECT_NE(why.find("contain one another"), std::string::npos) << why;
+    EXPECT_DOUBLE_EQ(parse_power_log(log, "n.csv", "auto", {{"series", "sum:domain=package-0|dram"}}).w[0], 24);
+}
+
+TEST(LongFormLogs, MissingSeriesInAPollIsRefusedInsideAndDroppedAtTheEnds) {
+    std::string log = "time_s,gpu,power_W\n0,a,10\n0,b,20\n1,a,11\n1,b,21\n2,a,12\n2,b,22\n3,a,13\n";
+    const PowerTrace all = parse_power_log(log, "g.csv", "auto", {{"series", "all"}});
+    ASSERT_EQ(all.size(), 3u);  // the last poll lacks b: dropped
+    EXPECT_DOUBLE_EQ(all.w[2], 34);
+    log = "time_s,gpu,power_W\n0,a,10\n0,b,20\n1,a,11\n2,a,12\n2,b,22\n3,a,13\n3,b,23\n";
+    EXPECT_NE(error_of(log, "auto", {{"series", "all"}}).find("x.log:4: this poll holds 1 of the 2 series"), std::string::npos);
+}
+
+// Item 1: cumulative energy counters read as differences.
+TEST(EnergyCounters, MicrojouleCounterIsReadAsDifferences) {
+    // powercap energy_uj: 10 W for 3 s, polled every 0.5 s
+    std::string log = "time_s,energy_uj\n";
+    for (int k = 0; k <= 6; ++k) log += std::to_string(k * 0.5) + "," + std::to_string(1000000000LL + k * 5000000LL) + "\n";
+    const PowerTrace tr = parse_power_log(log, "rapl.csv");
+    EXPECT_EQ(tr.kind, SampleKind::IntervalMean);
+    ASSERT_EQ(tr.size(), 6u);
+    ASSERT_TRUE(tr.first_interval_start.has_value());
+    EXPECT_DOUBLE_EQ(*tr.first_interval_start, 0.0);
+    EXPECT_NEAR(tr.w[0], 10, 1e-9);
+    EXPECT_NEAR(joules(tr), 30, 1e-9);  // the counter's rise
+    EXPECT_TRUE(mentions(tr.notes, "read as differences"));
+}
+
+TEST(EnergyCounters, UnitsFromTheNameAndWrapsAtTheStatedRange) {
+    // kWh, Wh, mWh and J
+    EXPECT_NEAR(joules(parse_power_log("time_s,energy_kWh\n0,1.0\n3600,1.1\n7200,1.2\n", "k.csv")), 0.2 * 3.6e6, 1e-6);
+    EXPECT_NEAR(joules(parse_power_log("time_s,Energy (Wh)\n0,2\n36,3\n72,4\n", "w.csv")), 7200, 1e-9);
+    EXPECT_NEAR(joules(parse_power_log("time_s,energy_mWh\n0,2\n36,3\n72,5\n", "m.csv")), 3 * 3.6, 1e-9);
+    EXPECT_NEAR(joules(parse_power_log("time_s,pkg_joules\n0,100\n1,112\n2,125\n", "j.csv")), 25, 1e-9);
+    // a counter running backwards is refused naming the line and the option
+    const std::string back = "time_s,energy_uj\n0,262000000000\n1,262010000000\n2,5000000\n3,15000000\n";
+    const std::string why = error_of(back);
+    EXPECT_NE(why.find("x.log:4: energy counter 'energy_uj' runs backwards"), std::string::npos) << why;
+    EXPECT_NE(why.find("max_energy_range_uj="), std::string::npos) << why;
+    // with the range it wraps: 262143328850 uJ is a common max_energy_range_uj
+    const PowerTrace w = parse_power_log(back, "r.csv", "auto", {{"max_energy_range_uj", "262143328850"}});
+    ASSERT_EQ(w.size(), 3u);
+    EXPECT_NEAR(w.w[0], 10, 1e-6);
+    EXPECT_NEAR(w.w[1], (262143328850.0 - 262010000000.0 + 5000000) * 1e-6, 1e-6);
+    EXPECT_NEAR(w.w[2], 10, 1e-6);
+    EXPECT_TRUE(mentions(w.notes, "1 counter wrap(s) unwrapped"));
+    // no unit in the name: asked for
+    EXPECT_NE(error_of("time_s,energy\n0,1\n1,2\n2,3\n").find("energy_unit="), std::string::npos);
+    // a logger with a power column and a cumulative energy column still reads the power
+    EXPECT_EQ(parse_power_log("time_s,power_W,cumulative_energy_wh\n0,5,0\n1,5,0.0014\n2,5,0.0028\n", "p.csv").kind, SampleKind::Instant);
+}
+
+TEST(EnergyCounters, LongFormCountersPerSeries) {
+    // two sockets' package counters in one long log; each series differenced on its own
+    std::string log = "time_s,socket,energy_uj\n";
+    for (int k = 0; k <= 4; ++k)
+        log += std::to_string(k) + ",0," + std::to_string(1000000 + k * 20000000LL) + "\n" + std::to_string(k) + ",1," +
+               std::to_string(900000000 + k * 30000000LL) + "\n";
+    EXPECT_NE(error_of(log).find("2 series"), std::string::npos);
+    const PowerTrace s1 = parse_power_log(log, "l.csv", "auto", {{"series", "socket=1"}});
+    EXPECT_NEAR(s1.w[0], 30, 1e-9);
+    EXPECT_NEAR(joules(s1), 120, 1e-9);
+    const PowerTrace all = parse_power_log(log, "l.csv", "auto", {{"series", "all"}});
+    ASSERT_EQ(all.size(), 4u);
+    EXPECT_NEAR(all.w[0], 50, 1e-9);
+    EXPECT_NEAR(joules(all), 200, 1e-9);  // 4 s x (20 + 30) W, not a sawtooth
+}
+
 }  // namespace
 }  // namespace trn::energy
