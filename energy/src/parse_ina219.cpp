@@ -157,11 +157,13 @@ PowerTrace parse_ina219_csv(std::string_view input, const std::string& name, con
         if (is_comment(l.text)) continue;
         Row r{l.number, split_fields(l.text, delim)};
         while (r.f.size() > ncols && r.f.back().empty()) r.f.pop_back();  // trailing separators
-        // "2024-03-12 10:00:01" split by an aligned-space separator: one field again.
-        if (delim == 0 && r.f.size() == ncols + 1)
+        // "2024-03-12 10:00:01" split by an aligned-space separator, or "2025-09-08T17:26:50,123456789+08:00"
+        // (date --iso-8601=ns) split by a ',' separator: one field again.
+        if ((delim == 0 || delim == ',') && r.f.size() == ncols + 1)
             for (std::size_t i = 0; i + 1 < r.f.size(); ++i)
-                if (!text::parse_datetime(r.f[i]) && text::parse_datetime(r.f[i] + " " + r.f[i + 1])) {
-                    r.f[i] += " " + r.f[i + 1];
+                if (const std::string glue = delim == ',' ? "," : " ";
+                    (delim == ',' || !text::parse_datetime(r.f[i])) && text::parse_datetime(r.f[i] + glue + r.f[i + 1])) {
+                    r.f[i] += glue + r.f[i + 1];
                     r.f.erase(r.f.begin() + static_cast<std::ptrdiff_t>(i) + 1);
                     break;
                 }

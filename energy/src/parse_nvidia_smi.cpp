@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <set>
 
 #include "option_reader.hpp"
@@ -101,6 +102,9 @@ PowerTrace parse_nvidia_smi(std::string_view input, const std::string& name, con
     struct Row { std::size_t line; double t; double w; std::vector<std::string> ids; };
     std::vector<Row> rows;
     TraceBuilder b(name, "nvidia-smi");
+    // Stamps with a UTC offset ("2025-09-08T17:26:50+08:00") are absolute; zone-less ones are local
+    // time. One kind per log: a mix is refused at the first stamp that differs.
+    std::optional<bool> zoned;
     // Columns that can tell GPUs apart, in order of preference.
     std::vector<std::pair<std::string, int>> id_cols;
     for (const char* n : {"index", "uuid", "pci.bus_id", "gpu", "gpu_index", "gpu_id", "name"})
@@ -115,8 +119,13 @@ PowerTrace parse_nvidia_smi(std::string_view input, const std::string& name, con
         }
         double t = 0;
         if (ct >= 0) {
-            const auto ts = text::parse_datetime(f[ct]);
+            bool known = false;
+            const auto ts = text::parse_datetime(f[ct], &known);
             if (!ts) text::fail(name, l.number, "timestamp '" + std::string(text::trim(f[ct])) + "' is not YYYY/MM/DD HH:MM:SS.mmm");
+            if (zoned && *zoned != known)
+                text::fail(name, l.number, "timestamp '" + std::string(text::trim(f[ct])) + "' " + (known ? "carries a UTC offset" : "has no time zone") +
+                                               " while the rows before it " + (known ? "have none" : "carry one") + ": one kind of stamp per log");
+            zoned = known;
             t = *ts;
         }
         std::string_view pv = text::trim(f[cp]);
@@ -236,7 +245,9 @@ PowerTrace parse_nvidia_smi(std::string_view input, const std::string& name, con
         }
         if (n_gpus > 1) b.note("GPU " + *gpu + " of " + std::to_string(n_gpus) + " in the log (told apart by " + told_by + ")");
     }
-    if (ct >= 0) {
+    if (ct >= 0 && zoned.value_or(false)) {
+        b.note("time stamps carry their UTC offset: read as absolute time");
+    } else if (ct >= 0) {
         b.trace().local_time = true;
         b.note("time stamps have no time zone (the logging machine's local time); taken as UTC (timezone= / utc_offset= to convert)");
     } else {

@@ -146,11 +146,11 @@ std::optional<double> parse_datetime(std::string_view s, bool* zone_known) {
     if (!eat(r, "T ") || !read_int(r, 2, h) || !eat(r, ":") || !read_int(r, 2, mi) || !eat(r, ":") || !read_int(r, 2, sec))
         return std::nullopt;
     double frac = 0;
-    if (!r.empty() && r.front() == '.') {
+    if (!r.empty() && (r.front() == '.' || r.front() == ',')) {  // ',': ISO 8601's other decimal sign (date --iso-8601=ns)
         std::size_t n = 1;
         while (n < r.size() && std::isdigit(static_cast<unsigned char>(r[n]))) ++n;
         if (n == 1) return std::nullopt;
-        frac = *to_number(std::string("0") + std::string(r.substr(0, n)));
+        frac = *to_number("0." + std::string(r.substr(1, n - 1)));
         r.remove_prefix(n);
     }
     if (mo < 1 || mo > 12 || d < 1 || d > 31 || h > 23 || mi > 59 || sec > 60) return std::nullopt;

@@ -32,6 +32,7 @@ std::optional<double> to_number(std::string_view field);
 double civil_to_unix(int year, int month, int day, int hour, int minute, double second);
 
 // "2026-03-18T12:09:03+05:30", "2026-03-18 12:09:03.5Z", "2024/10/30 18:42:33.189",
+// "2025-09-08T17:26:50,123456789+08:00" (date --iso-8601=ns: a comma before the fraction),
 // "10-01-2025 20:05:55" (MM-DD-YYYY, tegrastats). Returns UNIX seconds; zone-less stamps are
 // taken as UTC and *zone_known is set false.
 std::optional<double> parse_datetime(std::string_view s, bool* zone_known = nullptr);

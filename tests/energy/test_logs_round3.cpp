@@ -230,5 +230,42 @@ TEST(EnergyCounters, LongFormCountersPerSeries) {
     EXPECT_NEAR(joules(all), 200, 1e-9);  // 4 s x (20 + 30) W, not a sawtooth
 }
 
+// Item 3: time stamps. UTC offsets honoured; date --iso-8601=ns (a comma before the fraction).
+TEST(TimeStamps, NvidiaSmiOffsetsAreHonoured) {
+    const std::string log = "timestamp, power.draw [W]\n2025-09-08T17:26:50+08:00, 40.0 W\n2025-09-08T17:26:51+08:00, 42.0 W\n"
+                            "2025-09-08T17:26:52+08:00, 44.0 W\n";
+    const PowerTrace tr = parse_power_log(log, "smi.csv", "nvidia-smi");
+    EXPECT_FALSE(tr.local_time) << "the stamps carry their zone";
+    EXPECT_TRUE(tr.wall_clock);
+    EXPECT_DOUBLE_EQ(tr.t[0], 1757323610.0);  // 09:26:50 UTC
+    EXPECT_TRUE(mentions(tr.notes, "carry their UTC offset"));
+    EXPECT_FALSE(mentions(tr.notes, "no time zone"));
+    // a zone given for zoned stamps is refused (it would move them twice)
+    EXPECT_NE(error_of(log, "nvidia-smi", {{"utc_offset", "+08:00"}}).find("no local wall-clock"), std::string::npos);
+    // zone-less stamps stay local time
+    EXPECT_TRUE(parse_power_log("timestamp, power.draw [W]\n2025/09/08 17:26:50.000, 40.0 W\n2025/09/08 17:26:51.000, 41 W\n", "s.csv").local_time);
+    // a mix is refused naming the line
+    const std::string mixed = "timestamp, power.draw [W]\n2025-09-08T17:26:50+08:00, 40.0 W\n2025/09/08 17:26:51.000, 41 W\n";
+    EXPECT_NE(error_of(mixed, "nvidia-smi").find("x.log:3: timestamp '2025/09/08 17:26:51.000' has no time zone"), std::string::npos);
+}
+
+TEST(TimeStamps, IsoNanosecondStampsWithACommaBeforeTheFraction) {
+    // date --iso-8601=ns: 2025-09-08T17:26:50,250000000+08:00
+    const std::string semi = "time;power_W\n2025-09-08T17:26:50,250000000+08:00;5\n2025-09-08T17:26:50,750000000+08:00;7\n"
+                             "2025-09-08T17:26:51,250000000+08:00;9\n";
+    const PowerTrace a = parse_power_log(semi, "ns.csv");
+    EXPECT_NEAR(a.t[0], 1757323610.25, 1e-6);
+    EXPECT_NEAR(a.t[1] - a.t[0], 0.5, 1e-6);
+    EXPECT_FALSE(a.local_time);
+    // the same under a ',' separator: the stamp's comma does not split the row
+    std::string comma = semi;
+    for (char& c : comma)
+        if (c == ';') c = ',';
+    const PowerTrace b = parse_power_log(comma, "ns.csv");
+    ASSERT_EQ(b.size(), 3u);
+    EXPECT_NEAR(b.t[2] - b.t[0], 1.0, 1e-6);
+    EXPECT_DOUBLE_EQ(b.w[2], 9);
+}
+
 }  // namespace
 }  // namespace trn::energy
