@@ -53,6 +53,11 @@ std::string detect_power_log_format(std::string_view input, const std::string& n
     if (text::starts_with(l, "# trnkit-power")) return "trnkit";
     if (text::starts_with(l, "# SIMULATED INA219")) return "ina219-raw";
     if (looks_like_codecarbon(input)) return "codecarbon";
+    if (looks_like_scaphandre(input)) return "scaphandre";
+    if (looks_like_json(input))
+        text::fail(name, lines[first].number, std::string("a JSON document") + (l.front() == '{' && lines.size() > first + 1 ? " (JSON Lines: one object per line)" : "") +
+                                                  ", not a CSV or text power log; the JSON read here is Scaphandre's (format scaphandre); "
+                                                  "for another tool's JSON, export a CSV with a time and a power column");
     for (const auto& line : lines) {  // a raw register header after comments
         const auto s = text::trim(line.text);
         if (s.empty() || s.front() == '#') continue;

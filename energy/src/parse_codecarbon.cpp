@@ -96,7 +96,8 @@ RunSummaries parse_codecarbon_runs(std::string_view input, const std::string& na
             if (!r.end_s) text::fail(name, l.number, "timestamp '" + r.timestamp.substr(0, 40) + "' is not an ISO date-time");
             zone_less = zone_less || !known;
         }
-        for (const auto& [n, c] : machine_cols) r.machine += (r.machine.empty() ? "" : " | ") + f[static_cast<std::size_t>(c)];
+        for (const auto& [n, c] : machine_cols)
+            if (!f[static_cast<std::size_t>(c)].empty()) r.machine += (r.machine.empty() ? "" : ", ") + n + "=" + f[static_cast<std::size_t>(c)];
         if (r.machine.empty()) r.machine = "(no machine columns)";
         if (std::find(out.machines.begin(), out.machines.end(), r.machine) == out.machines.end()) out.machines.push_back(r.machine);
         // The parts must add up to the total (CodeCarbon writes energy_consumed = cpu + gpu + ram).

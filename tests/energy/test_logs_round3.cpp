@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "trn/energy/integrate.hpp"
@@ -265,6 +266,59 @@ TEST(TimeStamps, IsoNanosecondStampsWithACommaBeforeTheFraction) {
     ASSERT_EQ(b.size(), 3u);
     EXPECT_NEAR(b.t[2] - b.t[0], 1.0, 1e-6);
     EXPECT_DOUBLE_EQ(b.w[2], 9);
+}
+
+// Item 3: JSON. Scaphandre's JSON Lines read (microwatts); other JSON refused as JSON.
+std::string scaphandre_step(double t, double host_uw, double s0_uw, double dram_uw) {
+    char buf[600];
+    std::snprintf(buf, sizeof buf,
+                  "{\"host\":{\"consumption\":%.1f,\"timestamp\":%.3f,\"components\":{\"disks\":null}},\"consumers\":[{\"exe\":\"/usr/bin/x\","
+                  "\"pid\":42,\"consumption\":1000.0,\"timestamp\":%.3f}],\"sockets\":[{\"id\":0,\"consumption\":%.1f,\"domains\":[{\"name\":"
+                  "\"core\",\"consumption\":1.0,\"timestamp\":%.3f},{\"name\":\"dram\",\"consumption\":%.1f,\"timestamp\":%.3f}],\"timestamp\":%.3f}]}",
+                  host_uw, t, t, s0_uw, t, dram_uw, t, t);
+    return buf;
+}
+
+TEST(JsonLogs, ScaphandreJsonLinesInMicrowatts) {
+    std::string log;
+    for (int k = 0; k < 4; ++k) log += scaphandre_step(1757323610.0 + 2 * k, 31.5e6 + k * 1e6, 20e6, 3e6) + "\n";
+    EXPECT_EQ(detect_power_log_format(log, "s.json"), "scaphandre");
+    const PowerTrace host = parse_power_log(log, "s.json");
+    ASSERT_EQ(host.size(), 4u);
+    EXPECT_DOUBLE_EQ(host.w[0], 31.5);
+    EXPECT_TRUE(host.wall_clock);
+    EXPECT_EQ(host.kind, SampleKind::IntervalMean);
+    EXPECT_DOUBLE_EQ(parse_power_log(log, "s.json", "auto", {{"part", "socket:0"}}).w[1], 20);
+    EXPECT_DOUBLE_EQ(parse_power_log(log, "s.json", "auto", {{"part", "socket:0:dram"}}).w[2], 3);
+    // one JSON array of the same steps
+    std::string arr = "[";
+    for (int k = 0; k < 3; ++k) arr += (k ? "," : "") + scaphandre_step(100.0 + k, 10e6, 5e6, 1e6);
+    EXPECT_EQ(parse_power_log(arr + "]", "a.json").size(), 3u);
+    // a broken line names its line
+    EXPECT_NE(error_of(log + "{\"host\": \n").find("x.log:5: not valid JSON"), std::string::npos);
+    EXPECT_NE(error_of(log, "auto", {{"part", "gpu"}}).find("expected host, socket:N"), std::string::npos);
+}
+
+TEST(JsonLogs, OtherJsonIsRefusedAsJsonNotAsACsv) {
+    const std::string why = error_of("{\"t\": 1.0, \"watts\": 5}\n{\"t\": 2.0, \"watts\": 6}\n");
+    EXPECT_NE(why.find("x.log:1: a JSON document (JSON Lines"), std::string::npos) << why;
+    EXPECT_EQ(why.find("needs a power column"), std::string::npos) << why;
+}
+
+// The fuzz seeds written for this round read as the tests above say.
+TEST(Round3Seeds, ExamplesInTheFuzzCorpusRead) {
+    auto example = [](const std::string& file) {
+        const std::string path = std::string(TRN_POWER_LOG_EXAMPLES) + "/" + file;
+        return path;
+    };
+    const RunSummaries cc = read_run_summaries(example("codecarbon_emissions.csv"));
+    EXPECT_EQ(cc.runs.size(), 3u);
+    EXPECT_EQ(cc.machines.size(), 2u);
+    EXPECT_NE(cc.machines[1].find("gpu_model=1 x NVIDIA A100-SXM4-40GB"), std::string::npos) << cc.machines[1];
+    EXPECT_NEAR(joules(read_power_log(example("scaphandre.jsonl"))), 2 * (32.5 + 33.5 + 34.5), 1e-9);
+    const PowerTrace rapl = read_power_log(example("rapl_long_form_energy_uj.csv"), "auto", {{"series", "all"}});
+    EXPECT_NEAR(joules(rapl), (25 + 4 + 30 + 4) * 2.5, 1e-6);
+    EXPECT_NEAR(joules(read_power_log(example("rapl_long_form_energy_uj.csv"), "auto", {{"series", "socket=1,domain=package-1"}})), 30 * 2.5, 1e-6);
 }
 
 }  // namespace

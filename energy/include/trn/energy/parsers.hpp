@@ -68,6 +68,13 @@ PowerTrace parse_powerjoular(std::string_view text, const std::string& name, con
 // "# trnkit-power v1 kind=instant|interval-mean ..." then t_s,power_w lines.
 PowerTrace parse_trnkit_power(std::string_view text, const std::string& name, const ParseOptions& options = {});
 
+// Scaphandre JSON (`scaphandre json -f FILE`): JSON Lines or one array of measurement steps,
+// microwatts. Options: part (host, socket:N or socket:N:DOMAIN; default host).
+PowerTrace parse_scaphandre(std::string_view text, const std::string& name, const ParseOptions& options = {});
+// Recognition helpers for `auto`: a JSON document (first non-blank character '{' or '['), and
+// Scaphandre's among them.
+bool looks_like_json(std::string_view text);
+bool looks_like_scaphandre(std::string_view text);
 // CodeCarbon emissions.csv: per-run summaries, not a trace; always refused here, naming
 // `trnkit energy runs` (parse_codecarbon_runs in run_summaries.hpp reads the runs).
 [[noreturn]] PowerTrace parse_codecarbon(std::string_view text, const std::string& name, const ParseOptions& options = {});
