@@ -18,22 +18,11 @@ namespace {
 
 using text::Line;
 using text::split_fields;
+using text::detect_delimiter;
 
 bool is_comment(std::string_view l) {
     l = text::trim(l);
     return l.empty() || l.front() == '#';
-}
-
-// The separator of a logger CSV: the one of ',', ';' and tab the header holds most often
-// (ties in that order), else runs of spaces (an aligned table). 0 means whitespace.
-char detect_delimiter(std::string_view line) {
-    char best = 0;
-    std::size_t most = 0;
-    for (char c : {',', ';', '\t'}) {
-        const auto n = static_cast<std::size_t>(std::count(line.begin(), line.end(), c));
-        if (n > most) most = n, best = c;
-    }
-    return best;
 }
 
 // "30,3" / "-0,25": a number written with a decimal comma (one comma, digits on both sides).
@@ -124,7 +113,55 @@ PowerTrace parse_ina219_csv(std::string_view input, const std::string& name, con
     std::size_t first = 0;
     while (first < lines.size() && is_comment(lines[first].text)) ++first;
     if (first == lines.size()) throw Error(parser + ": no data lines");
-    const char delim = detect_delimiter(lines[first].text);
+    // The line naming the columns: the first non-comment line, unless that is a data row under a
+    // '#'-commented header ("# time_s,power_W"), or a preamble (device name, date, settings) comes
+    // before the table: then the first line (within 50) that names as many columns as the row
+    // after it holds, with a number among them.
+    std::string header_text(lines[first].text);
+    std::size_t header_at = first;
+    std::vector<std::string> layout_notes;
+    if (!o.text("columns")) {
+        auto names_only = [](std::string_view l) {
+            const auto f = split_fields(l, detect_delimiter(l));
+            return f.size() >= 2 && std::none_of(f.begin(), f.end(), [](const std::string& x) {
+                       return x.empty() || text::to_number(x) || text::parse_datetime(x) || decimal_comma_number(x);
+                   });
+        };
+        auto next_row = [&](std::size_t i) {
+            do ++i;
+            while (i < lines.size() && is_comment(lines[i].text));
+            return i;
+        };
+        auto heads_table = [&](std::string_view h, std::size_t row) {
+            if (row >= lines.size()) return false;
+            const char d = detect_delimiter(h);
+            auto f = split_fields(lines[row].text, d);
+            const std::size_t n = split_fields(h, d).size();
+            while (f.size() > n && f.back().empty()) f.pop_back();
+            return f.size() == n && std::any_of(f.begin(), f.end(), [](const std::string& x) { return text::to_number(x).has_value(); });
+        };
+        const bool first_names = names_only(lines[first].text);
+        std::size_t comment = first;
+        while (comment > 0 && text::trim(lines[comment - 1].text).empty()) --comment;
+        std::string commented = comment > 0 ? std::string(text::trim(text::trim(lines[comment - 1].text).substr(1))) : "";
+        if (!first_names && comment > 0 && names_only(commented) && heads_table(commented, first)) {
+            header_text = commented;
+            header_at = comment - 1;
+            layout_notes.push_back("header read from the comment line " + std::to_string(lines[header_at].number) + " ('#' before the column names)");
+        } else if (!first_names || !heads_table(lines[first].text, next_row(first))) {
+            const std::size_t n_first = split_fields(lines[first].text, detect_delimiter(lines[first].text)).size();
+            for (std::size_t i = next_row(first), seen = 0; i < lines.size() && seen < 50; i = next_row(i), ++seen)
+                if (names_only(lines[i].text) && heads_table(lines[i].text, next_row(i)) &&
+                    split_fields(lines[i].text, detect_delimiter(lines[i].text)).size() != n_first) {
+                    header_text = std::string(lines[i].text);
+                    header_at = i;
+                    layout_notes.push_back("skipped the preamble before the header at line " + std::to_string(lines[i].number) + " (lines " +
+                                           std::to_string(lines[first].number) + "-" + std::to_string(lines[i].number - 1) + ")");
+                    break;
+                }
+        }
+    }
+    const char delim = detect_delimiter(header_text);
     const std::string delim_name = delim == ',' ? "','" : delim == ';' ? "';'" : delim == '\t' ? "tab" : "spaces";
 
     std::vector<std::string> names;
@@ -132,7 +169,7 @@ PowerTrace parse_ina219_csv(std::string_view input, const std::string& name, con
     if (const auto cols = o.text("columns")) {
         for (auto c : text::split(*cols, ',')) names.emplace_back(text::trim(c));
     } else {
-        const auto fields = split_fields(lines[first].text, delim);
+        const auto fields = split_fields(header_text, delim);
         const bool header = std::none_of(fields.begin(), fields.end(), [](const std::string& f) {
             return text::to_number(f) || text::parse_datetime(f) || decimal_comma_number(f);
         });
@@ -140,7 +177,7 @@ PowerTrace parse_ina219_csv(std::string_view input, const std::string& name, con
             text::fail(name, lines[first].number,
                        "no header row naming the columns; pass columns=... (e.g. columns=index,sensor,bus_V,current_mA,power_W)");
         names = fields;
-        data_start = first + 1;
+        data_start = std::max(first, header_at + 1);
     }
     const std::size_t ncols = names.size();
 
@@ -247,7 +284,7 @@ PowerTrace parse_ina219_csv(std::string_view input, const std::string& name, con
     Column bus = find("bus_v", [&](const std::string& n) {
         return (has(n, "bus") || has(n, "volt") || has(n, "spannung") || n == "v" || n == "u" || n == "v_bus") && !has(n, "shunt");
     });
-    if (time.index < 0) throw Error(parser + ": no time column among '" + std::string(lines[first].text.substr(0, 200)) + "'; pass time=NAME");
+    if (time.index < 0) throw Error(parser + ": no time column among '" + header_text.substr(0, 200) + "'; pass time=NAME");
     const std::string use = o.text("use", "vi");
     if (use != "vi" && use != "power") throw Error(parser + ": option use must be vi or power");
     // A cumulative energy column (energy_uj, J, mWh, kWh) is read as a counter: its differences
@@ -385,6 +422,7 @@ PowerTrace parse_ina219_csv(std::string_view input, const std::string& name, con
                 if (const auto x = number_at(r, p)) raw.push_back(*x);
             check_power_unit_against_source(name, p.name, p.scale, raw, b.power_source(), "power_unit");
         }
+    for (auto& n : layout_notes) b.note(std::move(n));
     for (auto& n : unit_notes) b.note(std::move(n));
     if (decimal_commas)
         b.note(delim == ',' ? "decimal commas under a ',' separator: every row has twice the header's fields, read as value pairs 'int,frac'"

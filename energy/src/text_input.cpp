@@ -53,6 +53,16 @@ std::vector<std::string_view> split_ws(std::string_view s) {
     return out;
 }
 
+char detect_delimiter(std::string_view line) {
+    char best = 0;
+    std::size_t most = 0;
+    for (char c : {',', ';', '\t'}) {
+        const auto n = static_cast<std::size_t>(std::count(line.begin(), line.end(), c));
+        if (n > most) most = n, best = c;
+    }
+    return best;
+}
+
 std::vector<std::string> split_fields(std::string_view line, char delim) {
     std::vector<std::string> out;
     if (delim == 0) {

@@ -21,6 +21,9 @@ std::string_view trim(std::string_view s);
 std::vector<std::string_view> split(std::string_view s, char sep);
 std::vector<std::string_view> split_ws(std::string_view s);
 std::string lower(std::string_view s);
+// The separator of a CSV line: the one of ',', ';' and tab it holds most often (ties in that
+// order), else 0: runs of whitespace (an aligned table).
+char detect_delimiter(std::string_view line);
 // Fields of one CSV row split at `delim` (0: runs of whitespace), each trimmed; a double-quoted
 // field keeps its separators ("30,3", "Intel, Inc."), "" inside it is a quote.
 std::vector<std::string> split_fields(std::string_view line, char delim);

@@ -305,6 +305,28 @@ TEST(JsonLogs, OtherJsonIsRefusedAsJsonNotAsACsv) {
     EXPECT_EQ(why.find("needs a power column"), std::string::npos) << why;
 }
 
+// Item 3: commented headers and preambles.
+TEST(CsvLayout, CommentedHeaderIsTheHeader) {
+    const std::string log = "# logger v2, 10 Hz\n# time_s,bus_V,current_mA\n0.0,5.0,400\n0.1,5.0,420\n0.2,5.0,440\n";
+    const PowerTrace tr = parse_power_log(log, "c.csv");
+    ASSERT_EQ(tr.size(), 3u);
+    EXPECT_DOUBLE_EQ(tr.w[0], 2.0);
+    EXPECT_TRUE(mentions(tr.notes, "header read from the comment line 2"));
+    // a headerless log without such a comment is still refused as before
+    EXPECT_NE(error_of("# logger v2\n0.0,5.0,400\n0.1,5.0,420\n").find("no header row"), std::string::npos);
+}
+
+TEST(CsvLayout, PreambleBeforeTheHeaderIsSkipped) {
+    // a USB meter export: device, date and settings before the table
+    const std::string log = "UM25C USB tester export\nDate: 2025-09-08\nSample interval: 1 s\n\n"
+                            "Time(s),Voltage(V),Current(A),Power(W),Joules\n0,5.10,0.50,2.55,0\n1,5.10,0.60,3.06,2.8\n2,5.09,0.70,3.56,6.1\n";
+    EXPECT_EQ(detect_power_log_format(log, "um.csv"), "ina219-csv") << "a Joules column is not perf stat";
+    const PowerTrace tr = parse_power_log(log, "um.csv");
+    ASSERT_EQ(tr.size(), 3u);
+    EXPECT_NEAR(tr.w[1], 5.10 * 0.60, 1e-12);
+    EXPECT_TRUE(mentions(tr.notes, "skipped the preamble before the header at line 5 (lines 1-4)"));
+}
+
 // The fuzz seeds written for this round read as the tests above say.
 TEST(Round3Seeds, ExamplesInTheFuzzCorpusRead) {
     auto example = [](const std::string& file) {
