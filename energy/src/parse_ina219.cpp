@@ -38,7 +38,9 @@ bool decimal_comma_number(std::string_view f) {
 
 // Unit scale read from a column name ("current_mA", "power [W]", "bus(V)", "total_watts").
 std::optional<double> unit_scale_from_name(const std::string& name) {
-    const std::string n = text::lower(name);
+    std::string n = text::lower(name);
+    for (const char* micro : {"\xc2\xb5", "\xce\xbc"})  // "µA" (micro sign or Greek mu) as "uA"
+        for (auto at = n.find(micro); at != std::string::npos; at = n.find(micro)) n.replace(at, 2, "u");
     for (const auto& [word, scale] : std::vector<std::pair<std::string, double>>{
              {"milliwatts", 1e-3}, {"milliwatt", 1e-3}, {"kilowatts", 1e3}, {"kilowatt", 1e3}, {"watts", 1}, {"watt", 1}})
         if (n.find(word) != std::string::npos) return scale;
@@ -108,7 +110,7 @@ PowerTrace parse_ina219_csv(std::string_view input, const std::string& name, con
     const std::string parser = name + " (ina219-csv)";
     OptionReader o(options, parser, {"columns", "time", "bus_v", "shunt_v", "current", "power", "time_unit", "period_s",
                                      "bus_v_unit", "current_unit", "power_unit", "use", "source", "max_power_w", "energy", "energy_unit",
-                                     "max_energy_range_uj", "series"});
+                                     "max_energy_range_uj", "series", "voltage"});
     const auto lines = text::split_lines(input);
     std::size_t first = 0;
     while (first < lines.size() && is_comment(lines[first].text)) ++first;
@@ -307,7 +309,19 @@ PowerTrace parse_ina219_csv(std::string_view input, const std::string& name, con
     }
     const bool counter = energy.index >= 0;
     const bool vi = !counter && bus.index >= 0 && current.index >= 0 && !(use == "power" && !powers.empty());
-    if (!vi && !counter && powers.empty())
+    // A current-only export (Nordic PPK2, Otii, Joulescope with only current): power is the current
+    // times the supply voltage the user states; never assumed.
+    const bool current_only = !vi && !counter && powers.empty() && current.index >= 0 && bus.index < 0;
+    const auto supply_v = o.number("voltage");
+    if (supply_v && !current_only)
+        throw Error(parser + ": option voltage= is for a current-only log (a current column, no bus voltage, power or energy column); this log has " +
+                    (vi ? "bus voltage and current" : counter ? "an energy counter" : "a power column"));
+    if (supply_v && !(*supply_v > 0 && *supply_v < 1000)) throw Error(parser + ": option voltage must be a supply voltage in (0, 1000) V");
+    if (current_only && !supply_v)
+        throw Error(parser + ": a current-only log (column '" + current.name +
+                    "', no voltage or power: a PPK2, Otii or Joulescope current export): energy needs the supply voltage; pass voltage=V (the source "
+                    "voltage the device ran at)");
+    if (!vi && !counter && !current_only && powers.empty())
         throw Error(parser + ": needs a power column, bus voltage and current columns, or a cumulative energy column (energy_uj, energy_J, ..._kWh)");
     if (counter) {
         if (const auto u = o.text("energy_unit")) energy.scale = energy_unit_scale(*u, parser);
@@ -392,8 +406,8 @@ PowerTrace parse_ina219_csv(std::string_view input, const std::string& name, con
                     unit_notes.push_back(buf);
                 }
         }
-        if (!current_known && vi)
-            throw Error(parser + ": current column '" + current.name + "' has no unit in its name (A? mA?); pass current_unit=A or mA");
+        if (!current_known && (vi || current_only))
+            throw Error(parser + ": current column '" + current.name + "' has no unit in its name (A? mA? uA?); pass current_unit=A, mA or uA");
     }
 
     std::string time_unit = o.text("time_unit", "");
@@ -412,7 +426,7 @@ PowerTrace parse_ina219_csv(std::string_view input, const std::string& name, con
     if (vi)
         for (const auto& r : rows)
             if (const auto v = number_at(r, bus)) bus_values.push_back(std::abs(*v * bus.scale));
-    const std::string source = o.text("source", vi && median_of(bus_values) <= 60 ? "rail" : "node");
+    const std::string source = o.text("source", (vi && median_of(bus_values) <= 60) || current_only ? "rail" : "node");
     b.power_source(source, o);
     if (!vi && !counter && !o.text("power_unit"))
         for (const auto& p : powers) {
@@ -430,6 +444,7 @@ PowerTrace parse_ina219_csv(std::string_view input, const std::string& name, con
     std::string quantity;
     if (counter) quantity = energy.name + " (cumulative energy counter; power = its differences over time)";
     else if (vi) quantity = bus.name + "*" + current.name;
+    else if (current_only) quantity = current.name + " x voltage=" + o.text("voltage", "") + " V";
     else
         for (const auto& p : powers) quantity += (quantity.empty() ? "" : "+") + p.name;
     b.trace().quantity = quantity;
@@ -487,6 +502,8 @@ PowerTrace parse_ina219_csv(std::string_view input, const std::string& name, con
         std::optional<double> w;
         if (counter) {
             w = get(energy);  // joules so far
+        } else if (current_only) {
+            if (const auto i = get(current)) w = *i * *supply_v;
         } else if (vi) {
             const auto v = get(bus), i = get(current);
             if (v && i) w = *v * *i;

@@ -327,6 +327,25 @@ TEST(CsvLayout, PreambleBeforeTheHeaderIsSkipped) {
     EXPECT_TRUE(mentions(tr.notes, "skipped the preamble before the header at line 5 (lines 1-4)"));
 }
 
+// Item 3: current-only exports (PPK2, Otii, Joulescope): energy needs the supply voltage.
+TEST(CurrentOnly, RefusedWithoutVoltageAndReadWithIt) {
+    // Nordic PPK2 export: Timestamp(ms),Current(uA),D0-D7
+    const std::string ppk2 = "Timestamp(ms),Current(uA),D0-D7\n0.00,1500.0,00000000\n0.01,1520.0,00000000\n0.02,1480.0,00000001\n0.03,1500.0,00000001\n";
+    const std::string why = error_of(ppk2);
+    EXPECT_NE(why.find("a current-only log (column 'Current(uA)'"), std::string::npos) << why;
+    EXPECT_NE(why.find("pass voltage=V"), std::string::npos) << why;
+    const PowerTrace tr = parse_power_log(ppk2, "ppk2.csv", "auto", {{"voltage", "3.0"}});
+    ASSERT_EQ(tr.size(), 4u);
+    EXPECT_NEAR(tr.w[0], 1500e-6 * 3.0, 1e-12);
+    EXPECT_NEAR(tr.t[1] - tr.t[0], 1e-5, 1e-12);  // ms
+    EXPECT_EQ(tr.quantity, "Current(uA) x voltage=3.0 V");
+    // micro sign in the unit
+    EXPECT_NEAR(parse_power_log("Time (s),Current (\xc2\xb5" "A)\n0,100\n1,200\n2,300\n", "otii.csv", "auto", {{"voltage", "5"}}).w[1], 1e-3, 1e-12);
+    // voltage= on a log that has a voltage is refused
+    EXPECT_NE(error_of("time_s,bus_V,current_mA\n0,5,100\n1,5,100\n", "auto", {{"voltage", "5"}}).find("voltage= is for a current-only log"),
+              std::string::npos);
+}
+
 // The fuzz seeds written for this round read as the tests above say.
 TEST(Round3Seeds, ExamplesInTheFuzzCorpusRead) {
     auto example = [](const std::string& file) {
