@@ -346,6 +346,33 @@ TEST(CurrentOnly, RefusedWithoutVoltageAndReadWithIt) {
               std::string::npos);
 }
 
+// Item 3: jetson-stats (jtop) CSV; item 4: which rails a sum covers.
+TEST(Jtop, PowerTotByDefaultAndSumsWithoutTheInputRail) {
+    const std::string log =
+        "time,uptime,CPU1,CPU2,RAM,GPU,Temp CPU,Power VDD_IN,Power VDD_CPU_GPU_CV,Power VDD_SOC,Power TOT,jetson_clocks,nvp model\n"
+        "2025-09-08 17:26:50.000000,\"1 day, 2:03:04.5\",12,9,0.31,0,41.2,4810,1201,1603,4810,OFF,15W\n"
+        "2025-09-08 17:26:51.000000,\"1 day, 2:03:05.5\",40,35,0.32,80,42.0,7210,3601,1609,7210,OFF,15W\n"
+        "2025-09-08 17:26:52.000000,\"1 day, 2:03:06.5\",41,33,0.32,81,42.5,7190,3580,1610,7190,OFF,15W\n";
+    EXPECT_EQ(detect_power_log_format(log, "jtop.csv"), "jtop");
+    const PowerTrace tot = parse_power_log(log, "jtop.csv");
+    ASSERT_EQ(tot.size(), 3u);
+    EXPECT_DOUBLE_EQ(tot.w[0], 4.810);
+    EXPECT_TRUE(tot.local_time);
+    const PowerTrace sum = parse_power_log(log, "jtop.csv", "auto", {{"rail", "sum"}});
+    EXPECT_DOUBLE_EQ(sum.w[1], 3.601 + 1.609) << "VDD_IN holds the other rails: left out of the sum";
+    EXPECT_NE(sum.quantity.find("input rail VDD_IN left out"), std::string::npos) << sum.quantity;
+    EXPECT_DOUBLE_EQ(parse_power_log(log, "jtop.csv", "auto", {{"rail", "VDD_SOC"}}).w[2], 1.610);
+    EXPECT_NE(error_of(log, "auto", {{"rail", "VDD_GPU"}}).find("rail 'VDD_GPU' is not in the log"), std::string::npos);
+}
+
+TEST(Jtop, TegrastatsRailSumLeavesTheInputRailOut) {
+    const std::string log = "RAM 2000/3964MB CPU [5%@102,off,off,3%@102] POM_5V_IN 2793/2793 POM_5V_GPU 76/76 POM_5V_CPU 320/320\n"
+                            "RAM 2000/3964MB CPU [5%@102,off,off,3%@102] POM_5V_IN 2893/2843 POM_5V_GPU 86/81 POM_5V_CPU 330/325\n";
+    const PowerTrace tr = parse_power_log(log, "t.log", "tegrastats", {{"rail", "sum"}, {"interval_ms", "1000"}});
+    EXPECT_NEAR(tr.w[0], 0.076 + 0.320, 1e-12);
+    EXPECT_NE(tr.quantity.find("POM_5V_IN left out"), std::string::npos) << tr.quantity;
+}
+
 // The fuzz seeds written for this round read as the tests above say.
 TEST(Round3Seeds, ExamplesInTheFuzzCorpusRead) {
     auto example = [](const std::string& file) {

@@ -39,6 +39,11 @@ PowerTrace parse_nvidia_smi(std::string_view text, const std::string& name, cons
 // 5542mW/5542mW"). Options: rail (default: the input rail VDD_IN / POM_5V_IN; "sum" adds all
 // rails), interval_ms (used when lines carry no time stamp; default 1000).
 PowerTrace parse_tegrastats(std::string_view text, const std::string& name, const ParseOptions& options = {});
+// jetson-stats (jtop) CSV (csv.DictWriter over jtop's stats: time,uptime,...,Power <RAIL>,...,Power
+// TOT,...; mW; zone-less local time). Options: rail (TOT by default; a rail name; sum = the rails
+// outside the input rail, which holds them).
+PowerTrace parse_jtop(std::string_view text, const std::string& name, const ParseOptions& options = {});
+bool looks_like_jtop(std::string_view text);
 // PMT dumps: header "timestamp <sensor columns>", then "<t> <W>..." and `M <t> "label"` markers.
 // Options: column (default: a column named *instant*, else the first).
 PowerTrace parse_pmt(std::string_view text, const std::string& name, const ParseOptions& options = {});
