@@ -55,6 +55,7 @@ std::string detect_power_log_format(std::string_view input, const std::string& n
     if (looks_like_codecarbon(input)) return "codecarbon";
     if (looks_like_scaphandre(input)) return "scaphandre";
     if (looks_like_jtop(l)) return "jtop";
+    if (looks_like_pi_pmic(input)) return "pi5-pmic";
     if (looks_like_json(input))
         text::fail(name, lines[first].number, std::string("a JSON document") + (l.front() == '{' && lines.size() > first + 1 ? " (JSON Lines: one object per line)" : "") +
                                                   ", not a CSV or text power log; the JSON read here is Scaphandre's (format scaphandre); "

@@ -373,6 +373,37 @@ TEST(Jtop, TegrastatsRailSumLeavesTheInputRailOut) {
     EXPECT_NE(tr.quantity.find("POM_5V_IN left out"), std::string::npos) << tr.quantity;
 }
 
+// Item 3: Raspberry Pi 5 PMIC dumps (vcgencmd pmic_read_adc) with a time stamp line before each.
+std::string pmic_dump(double core_a, double sys_a) {
+    char buf[400];
+    std::snprintf(buf, sizeof buf,
+                  "     3V3_SYS_A current(1)=%.8fA\n     VDD_CORE_A current(7)=%.8fA\n     HDMI_A current(22)=0.00000000A\n"
+                  "     3V3_SYS_V volt(9)=3.31002000V\n     VDD_CORE_V volt(15)=0.80000000V\n     EXT5V_V volt(24)=5.14647000V\n",
+                  sys_a, core_a);
+    return buf;
+}
+
+TEST(PiPmic, DumpsAfterTimeStampsSumIxVOverPairedRails) {
+    std::string log;
+    for (int k = 0; k < 3; ++k) log += std::to_string(1757323610 + k) + ".250000000\n" + pmic_dump(2.0 + k, 0.1);
+    EXPECT_EQ(detect_power_log_format(log, "pmic.log"), "pi5-pmic");
+    const PowerTrace tr = parse_power_log(log, "pmic.log");
+    ASSERT_EQ(tr.size(), 3u);
+    EXPECT_NEAR(tr.w[0], 2.0 * 0.8 + 0.1 * 3.31002, 1e-9);
+    EXPECT_NEAR(tr.t[1] - tr.t[0], 1.0, 1e-6);
+    EXPECT_TRUE(tr.wall_clock);
+    EXPECT_FALSE(tr.local_time);
+    EXPECT_TRUE(mentions(tr.notes, "left out, without a partner reading: EXT5V_V, HDMI_A"));
+    // date --iso-8601=ns stamps work too
+    std::string iso;
+    for (int k = 0; k < 2; ++k) iso += "2025-09-08T17:26:5" + std::to_string(k) + ",250000000+08:00\n" + pmic_dump(2.0, 0.1);
+    EXPECT_NEAR(parse_power_log(iso, "p.log").t[0], 1757323610.25, 1e-6);
+    // without stamps: refused naming the fix, or placed by interval_s
+    const std::string bare = pmic_dump(2.0, 0.1) + pmic_dump(2.5, 0.1) + pmic_dump(3.0, 0.1);
+    EXPECT_NE(error_of(bare).find("date +%s.%N"), std::string::npos);
+    EXPECT_EQ(parse_power_log(bare, "b.log", "auto", {{"interval_s", "1"}}).size(), 3u);
+}
+
 // The fuzz seeds written for this round read as the tests above say.
 TEST(Round3Seeds, ExamplesInTheFuzzCorpusRead) {
     auto example = [](const std::string& file) {

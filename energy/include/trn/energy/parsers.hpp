@@ -44,6 +44,11 @@ PowerTrace parse_tegrastats(std::string_view text, const std::string& name, cons
 // outside the input rail, which holds them).
 PowerTrace parse_jtop(std::string_view text, const std::string& name, const ParseOptions& options = {});
 bool looks_like_jtop(std::string_view text);
+// Raspberry Pi 5 PMIC dumps (`vcgencmd pmic_read_adc`, each after a time stamp line: `date +%s.%N`
+// or an ISO stamp): power = sum of I x V over the rails with both readings. Options: interval_s
+// (dumps without time stamps placed evenly).
+PowerTrace parse_pi_pmic(std::string_view text, const std::string& name, const ParseOptions& options = {});
+bool looks_like_pi_pmic(std::string_view text);
 // PMT dumps: header "timestamp <sensor columns>", then "<t> <W>..." and `M <t> "label"` markers.
 // Options: column (default: a column named *instant*, else the first).
 PowerTrace parse_pmt(std::string_view text, const std::string& name, const ParseOptions& options = {});
