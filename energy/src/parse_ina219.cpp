@@ -527,6 +527,10 @@ PowerTrace parse_ina219_csv(std::string_view input, const std::string& name, con
     }
     if (bad * 2 > rows.size() && bad > 0)
         text::fail(name, first_bad, "most rows are unreadable (" + std::to_string(bad) + "); check columns/delimiter");
+    if (series_keys.size() > 1 && !o.text("series") && !series::interleaved(samples)) {  // labels in blocks: one trace
+        for (auto& x : samples) x.series = 0;
+        series_keys = {series::Key{}};
+    }
     const series::Selection sel = series::select(series_keys, o.text("series"), parser, "rows");
     if (series_keys.size() > 1 || o.text("series"))
         b.note(std::string(sel.sum ? "power is the sum of series " : "series ") + sel.described + " (series=" + o.text("series", "") + ") of " +

@@ -28,7 +28,8 @@ inline std::string label(const Key& k) {
 }
 
 // Is a column (not time, not a value column) a key? Text values (not numbers, not dates) with 2..64
-// distinct values each seen at least twice, or whole numbers under a key-like name (socket=0/1).
+// distinct values each seen at least twice, or whole numbers under a key-like name (socket=0/1);
+// either way changing at least every 16 rows on average. interleaved() then asks the rows.
 inline bool is_key_column(const std::string& column_name, const std::vector<std::string>& values) {
     static const std::set<std::string> key_names = {"socket", "package", "package_id", "pkg", "domain", "zone", "device", "device_id", "dev",
                                                     "gpu", "gpu_id", "gpu_index", "sensor", "rail", "channel", "node", "host", "hostname",
@@ -43,6 +44,11 @@ inline bool is_key_column(const std::string& column_name, const std::vector<std:
         if (!n && text::parse_datetime(v)) return false;
     }
     if (count.size() < 2 || count.size() > 64 || values.size() < 4) return false;
+    // A label that changes only in long runs (a phase column: idle x 30, busy x 30, ...) describes
+    // one device's rows, not series.
+    std::size_t changes = 0;
+    for (std::size_t i = 1; i < values.size(); ++i) changes += values[i] != values[i - 1];
+    if (changes * 16 < values.size()) return false;
     if (numbers) return whole && key_names.count(text::lower(text::trim(column_name))) > 0;
     return std::all_of(count.begin(), count.end(), [](const auto& c) { return c.second >= 2; });
 }
@@ -140,6 +146,19 @@ struct Sample {
     double v = 0;
     std::size_t series = 0;
 };
+
+// Do the series share the log's time? Rows of different series at one time stamp, or a series
+// change on at least half of the consecutive rows (each poll's rows in turn). Labels whose rows
+// come in blocks (phases of one device) are not series, and the log is one trace.
+inline bool interleaved(const std::vector<Sample>& rows) {
+    std::size_t changes = 0;
+    for (std::size_t i = 1; i < rows.size(); ++i) {
+        if (rows[i].series == rows[i - 1].series) continue;
+        if (rows[i].t == rows[i - 1].t) return true;
+        ++changes;
+    }
+    return changes * 2 >= rows.size();
+}
 
 // A cumulative energy counter per series to interval-mean power: each reading after a series'
 // first becomes (E[k] - E[k-1]) / (t[k] - t[k-1]) at t[k]. A step back is a wrap when the range is

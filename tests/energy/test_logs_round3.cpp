@@ -155,6 +155,8 @@ TEST(LongFormLogs, SeveralSeriesAreRefusedUntilOneOrAllIsNamed) {
     // unknown key or value
     EXPECT_NE(error_of(log, "auto", {{"series", "rack=1"}}).find("'rack' is not a key column"), std::string::npos);
     EXPECT_NE(error_of(log, "auto", {{"series", "domain=gpu"}}).find("matches none"), std::string::npos);
+    // a phase label that changes in runs is not a series key: the log reads as one trace
+    EXPECT_EQ(parse_power_log("time_s,phase,power_W\n0,idle,5\n1,idle,5\n2,idle,5\n3,busy,9\n4,busy,9\n5,busy,9\n6,idle,5\n7,idle,5\n", "ph.csv").size(), 8u);
     // a log with one series (a constant text column) reads as before
     EXPECT_EQ(parse_power_log("time_s,sensor,power_W\n0,INA219,5\n1,INA219,6\n2,INA219,7\n3,INA219,8\n", "c.csv").size(), 4u);
 }
