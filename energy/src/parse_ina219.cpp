@@ -478,7 +478,18 @@ PowerTrace parse_ina219_csv(std::string_view input, const std::string& name, con
     std::vector<series::Sample> samples;
     std::size_t bad = 0, first_bad = 0;
     std::vector<double> vi_ratio;
-    bool zone_known = true;
+    std::optional<bool> zoned;  // date-time stamps: all with a UTC offset, or none (a mix is refused)
+    auto stamp = [&](const std::string& tf, std::size_t line) -> std::optional<double> {
+        bool known = false;
+        const auto d = text::parse_datetime(tf, &known);
+        if (!d) return d;
+        if (zoned && *zoned != known)
+            text::fail(name, line, "time stamp '" + tf.substr(0, 40) + "' " + (known ? "carries a UTC offset" : "has no time zone") + " while the rows before it " +
+                                       (known ? "have none" : "carry one") + ": one kind of stamp per log");
+        zoned = known;
+        b.trace().wall_clock = true;
+        return d;
+    };
     for (const Row& r : rows) {
         const auto& f = r.f;
         auto get = [&](const Column& c) -> std::optional<double> {
@@ -492,9 +503,9 @@ PowerTrace parse_ina219_csv(std::string_view input, const std::string& name, con
                 tf = f[date_col] + " " + tf;
             if (time_unit == "auto") {
                 if (auto n = text::to_number(tf)) t = n;
-                else if (auto d = text::parse_datetime(tf, &zone_known)) { t = d; b.trace().wall_clock = true; }
+                else if (auto d = stamp(tf, r.line)) t = d;
             } else if (time_unit == "iso") {
-                if (auto d = text::parse_datetime(tf, &zone_known)) { t = d; b.trace().wall_clock = true; }
+                if (auto d = stamp(tf, r.line)) t = d;
             } else if (auto n = text::to_number(tf)) {
                 t = time_unit == "ms" ? *n * 1e-3 : time_unit == "us" ? *n * 1e-6 : time_unit == "index" ? *n * period : *n;
             }
@@ -565,7 +576,7 @@ PowerTrace parse_ina219_csv(std::string_view input, const std::string& name, con
         }
     }
     if (powers.size() > 1) b.note("power is the sum of " + std::to_string(powers.size()) + " columns (power=sum): " + quantity);
-    b.trace().local_time = b.trace().wall_clock && !zone_known;
+    b.trace().local_time = b.trace().wall_clock && !zoned.value_or(true);
     if (b.trace().local_time) b.note("time stamps have no time zone; taken as UTC (timezone= / utc_offset= to convert)");
     if (!b.trace().w.empty() && *std::min_element(b.trace().w.begin(), b.trace().w.end()) < 0)
         b.note("negative power readings present (shunt offset or reverse current); kept as read");

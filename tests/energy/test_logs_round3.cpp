@@ -260,6 +260,10 @@ TEST(TimeStamps, IsoNanosecondStampsWithACommaBeforeTheFraction) {
     EXPECT_NEAR(a.t[0], 1757323610.25, 1e-6);
     EXPECT_NEAR(a.t[1] - a.t[0], 0.5, 1e-6);
     EXPECT_FALSE(a.local_time);
+    // zoned and zone-less stamps mixed: refused at the first that differs
+    EXPECT_NE(error_of("time;power_W\n2025-09-08T17:26:50+08:00;5\n2025-09-08T17:26:51;7\n2025-09-08T17:26:52+08:00;9\n")
+                  .find("x.log:3: time stamp '2025-09-08T17:26:51' has no time zone"),
+              std::string::npos);
     // the same under a ',' separator: the stamp's comma does not split the row
     std::string comma = semi;
     for (char& c : comma)
