@@ -45,10 +45,19 @@ bool reading(const json& step, const std::string& part, double& t, double& uw) {
 
 }  // namespace
 
-bool looks_like_json(std::string_view input) { return starts_json(input); }
+// '{' starts JSON; '[' only when the first line or the whole text is JSON (a log line such as
+// "[2024-05-02 10:15:01] 5.1 W" is not).
+bool looks_like_json(std::string_view input) {
+    if (!starts_json(input)) return false;
+    const auto s = text::trim(input);
+    if (s.front() == '{') return true;
+    const auto nl = s.find('\n');
+    const auto first = text::trim(s.substr(0, nl));
+    return json::accept(first.begin(), first.end()) || json::accept(s.begin(), s.end());
+}
 
 bool looks_like_scaphandre(std::string_view input) {
-    if (!starts_json(input)) return false;
+    if (!looks_like_json(input)) return false;
     const auto head = input.substr(0, std::min<std::size_t>(input.size(), 4096));
     return head.find("\"host\"") != std::string_view::npos && head.find("\"consumption\"") != std::string_view::npos;
 }

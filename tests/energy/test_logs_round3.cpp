@@ -309,6 +309,9 @@ TEST(JsonLogs, OtherJsonIsRefusedAsJsonNotAsACsv) {
     const std::string why = error_of("{\"t\": 1.0, \"watts\": 5}\n{\"t\": 2.0, \"watts\": 6}\n");
     EXPECT_NE(why.find("x.log:1: a JSON document (JSON Lines"), std::string::npos) << why;
     EXPECT_EQ(why.find("needs a power column"), std::string::npos) << why;
+    EXPECT_NE(error_of("[{\"t\": 1.0, \"watts\": 5},\n{\"t\": 2.0, \"watts\": 6}]\n").find("a JSON document"), std::string::npos);
+    // a bracketed log line is not JSON
+    EXPECT_EQ(error_of("[2024-05-02 10:15:01] 5.1 W\n[2024-05-02 10:15:02] 5.2 W\n").find("JSON"), std::string::npos);
 }
 
 // Item 3: commented headers and preambles.
