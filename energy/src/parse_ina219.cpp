@@ -38,9 +38,14 @@ bool decimal_comma_number(std::string_view f) {
 
 // Unit scale read from a column name ("current_mA", "power [W]", "bus(V)", "total_watts").
 std::optional<double> unit_scale_from_name(const std::string& name) {
-    std::string n = text::lower(name);
-    for (const char* micro : {"\xc2\xb5", "\xce\xbc"})  // "µA" (micro sign or Greek mu) as "uA"
-        for (auto at = n.find(micro); at != std::string::npos; at = n.find(micro)) n.replace(at, 2, "u");
+    // "µA" (micro sign or Greek mu) read as "uA"
+    const std::string lowered = text::lower(name);
+    std::string n;
+    for (std::size_t i = 0; i < lowered.size(); ++i) {
+        const bool micro = i + 1 < lowered.size() && ((lowered[i] == '\xc2' && lowered[i + 1] == '\xb5') || (lowered[i] == '\xce' && lowered[i + 1] == '\xbc'));
+        n += micro ? 'u' : lowered[i];
+        i += micro;
+    }
     for (const auto& [word, scale] : std::vector<std::pair<std::string, double>>{
              {"milliwatts", 1e-3}, {"milliwatt", 1e-3}, {"kilowatts", 1e3}, {"kilowatt", 1e3}, {"watts", 1}, {"watt", 1}})
         if (n.find(word) != std::string::npos) return scale;
