@@ -10,20 +10,14 @@
 #include <string>
 
 #include "option_reader.hpp"
+#include "pi_pmic.hpp"
 #include "trace_builder.hpp"
 #include "trn/energy/parsers.hpp"
 
 namespace trn::energy {
-namespace {
+namespace pmic {
 
-struct Reading {
-    std::string rail;  // "VDD_CORE"
-    bool current = false;
-    double value = 0;  // A or V
-};
-
-// "  VDD_CORE_A current(7)=0.72300000A" / "  EXT5V_V volt(24)=5.14647000V"
-std::optional<Reading> pmic_line(std::string_view s) {
+std::optional<Reading> parse_line(std::string_view s) {
     s = text::trim(s);
     const auto sp = s.find(' ');
     const auto eq = s.find(")=");
@@ -46,12 +40,27 @@ std::optional<Reading> pmic_line(std::string_view s) {
     return r;
 }
 
-}  // namespace
+Sum sum(const Dump& d) {
+    Sum s;
+    for (const auto& [rail, a] : d.amps) {
+        const auto v = d.volts.find(rail);
+        if (v == d.volts.end()) {
+            s.unpaired.insert(rail + "_A");
+            continue;
+        }
+        s.w += a * v->second, s.rails += (s.rails.empty() ? "" : "+") + rail;
+    }
+    for (const auto& [rail, v] : d.volts)
+        if (!d.amps.count(rail)) s.unpaired.insert(rail + "_V");
+    return s;
+}
+
+}  // namespace pmic
 
 bool looks_like_pi_pmic(std::string_view input) {
     std::size_t seen = 0;
     for (const auto& l : text::split_lines(input.substr(0, std::min<std::size_t>(input.size(), 8192))))
-        if (pmic_line(l.text) && ++seen >= 2) return true;
+        if (pmic::parse_line(l.text) && ++seen >= 2) return true;
     return false;
 }
 
@@ -63,7 +72,7 @@ PowerTrace parse_pi_pmic(std::string_view input, const std::string& name, const 
     TraceBuilder b(name, "pi5-pmic");
     b.power_source("node", o);
     b.trace().quantity = "sum of PMIC rails I x V (vcgencmd pmic_read_adc)";
-    struct Dump { std::size_t line = 0; std::optional<double> t; std::map<std::string, double> amps, volts; };
+    struct Dump : pmic::Dump { std::size_t line = 0; std::optional<double> t; };
     std::vector<Dump> dumps;
     bool stamped = false, any_zone_less = false;
     auto start = [&](std::size_t line, std::optional<double> t) {
@@ -74,7 +83,7 @@ PowerTrace parse_pi_pmic(std::string_view input, const std::string& name, const 
     for (const auto& l : text::split_lines(input)) {
         const auto s = text::trim(l.text);
         if (s.empty() || s.front() == '#') continue;
-        if (const auto r = pmic_line(s)) {
+        if (const auto r = pmic::parse_line(s)) {
             if (dumps.empty() || (!stamped && (r->current ? dumps.back().amps : dumps.back().volts).count(r->rail))) start(l.number, std::nullopt);
             auto& d = dumps.back();
             auto& m = r->current ? d.amps : d.volts;
@@ -96,16 +105,11 @@ PowerTrace parse_pi_pmic(std::string_view input, const std::string& name, const 
     std::string summed;
     std::size_t index = 0;
     for (const auto& d : dumps) {
-        if (d.amps.empty() && d.volts.empty()) continue;
-        double w = 0;
-        std::string rails;
-        for (const auto& [rail, a] : d.amps) {
-            const auto v = d.volts.find(rail);
-            if (v == d.volts.end()) { unpaired.insert(rail + "_A"); continue; }
-            w += a * v->second, rails += (rails.empty() ? "" : "+") + rail;
-        }
-        for (const auto& [rail, v] : d.volts)
-            if (!d.amps.count(rail)) unpaired.insert(rail + "_V");
+        if (d.empty()) continue;
+        const pmic::Sum sm = pmic::sum(d);
+        const double w = sm.w;
+        const std::string& rails = sm.rails;
+        unpaired.insert(sm.unpaired.begin(), sm.unpaired.end());
         if (summed.empty()) summed = rails;
         else if (rails != summed)
             text::fail(name, d.line, "this dump's rails (" + rails + ") differ from the first dump's (" + summed + "): the sum would not be the same quantity");
@@ -133,7 +137,7 @@ PowerTrace parse_pi_pmic(std::string_view input, const std::string& name, const 
     for (const auto& u : unpaired) left += (left.empty() ? "" : ", ") + u;
     b.note("power = sum of I x V over the PMIC rails " + summed + " (each dump read at once, instant)" +
            (left.empty() ? "" : "; left out, without a partner reading: " + left) +
-           "; not in it: the 5 V input's own draw for USB/peripherals and the PMIC's conversion losses, so a wall meter reads more");
+           "; " + pmic::kNotInSum);
     return b.finish();
 }
 

@@ -4,9 +4,15 @@
 
 #include <cmath>
 #include <cstdio>
+#include <unistd.h>
 #include <string>
 
+#include <filesystem>
+#include <fstream>
+
+#include "pi_pmic.hpp"
 #include "trn/energy/integrate.hpp"
+#include "trn/energy/power_sampler.hpp"
 #include "trn/energy/parsers.hpp"
 #include "trn/energy/run_summaries.hpp"
 #include "trn/error.hpp"
@@ -411,6 +417,38 @@ TEST(PiPmic, DumpsAfterTimeStampsSumIxVOverPairedRails) {
     const std::string bare = pmic_dump(2.0, 0.1) + pmic_dump(2.5, 0.1) + pmic_dump(3.0, 0.1);
     EXPECT_NE(error_of(bare).find("date +%s.%N"), std::string::npos);
     EXPECT_EQ(parse_power_log(bare, "b.log", "auto", {{"interval_s", "1"}}).size(), 3u);
+}
+
+// The live PMIC sampler runs vcgencmd at each poll (here a script standing in for it).
+TEST(PiPmic, LiveSamplerSumsTheRailsOfEachDump) {
+    const auto dir = std::filesystem::temp_directory_path() / ("trn_pmic_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    const auto fake = dir / "vcgencmd";
+    {
+        std::ofstream f(fake);
+        f << "#!/bin/sh\n[ \"$1\" = pmic_read_adc ] || exit 2\nprintf '%s\\n' '" << pmic_dump(2.0, 0.1).substr(5) << "'\n";
+    }
+    std::filesystem::permissions(fake, std::filesystem::perms::owner_all);
+    SamplerOptions so;
+    so.vcgencmd = fake.string();
+    const auto s = make_power_sampler("pmic:vcgencmd", so);
+    s->poll(1.0);
+    s->poll(2.0);
+    const PowerTrace tr = s->trace();
+    ASSERT_EQ(tr.size(), 2u);
+    EXPECT_NEAR(tr.w[1], 2.0 * 0.8 + 0.1 * 3.31002, 1e-9);
+    EXPECT_TRUE(mentions(tr.notes, "left out, without a partner reading: EXT5V_V, HDMI_A"));
+    // a missing program and a relative path are errors naming them
+    so.vcgencmd = (dir / "missing").string();
+    EXPECT_THROW(make_power_sampler("pmic", so)->poll(1.0), trn::Error);
+    so.vcgencmd = "vcgencmd";
+    try {
+        make_power_sampler("pmic", so)->poll(1.0);
+        ADD_FAILURE() << "a relative program path was run";
+    } catch (const trn::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("absolute path"), std::string::npos) << e.what();
+    }
+    std::filesystem::remove_all(dir);
 }
 
 // The fuzz seeds written for this round read as the tests above say.
