@@ -1,6 +1,7 @@
 #include "trn/energy/power_sampler.hpp"
 
 #include <time.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -23,6 +24,7 @@ std::unique_ptr<PowerSampler> make_power_sampler(const std::string& spec, const 
 std::vector<std::string> list_power_sources(const SamplerOptions& o) {
     std::vector<std::string> out;
     for (const auto& s : list_sysfs_sources(o.sysfs_root)) out.push_back(s.describe());
+    if (access(o.vcgencmd.c_str(), X_OK) == 0) out.push_back("pmic:vcgencmd (" + o.vcgencmd + " pmic_read_adc: a Raspberry Pi 5's PMIC rails)");
     try {
         for (const auto& d : list_nvml_devices(o.nvml_library)) out.push_back(d);
     } catch (const Error& e) {
