@@ -431,7 +431,12 @@ PowerTrace parse_ina219_csv(std::string_view input, const std::string& name, con
     if (vi)
         for (const auto& r : rows)
             if (const auto v = number_at(r, bus)) bus_values.push_back(std::abs(*v * bus.scale));
-    const std::string source = o.text("source", (vi && median_of(bus_values) <= 60) || current_only ? "rail" : "node");
+    // A USB meter's export names the data lines' voltages (D+, D-, Data+ (V), ...): a USB device.
+    const bool usb_meter = std::any_of(names.begin(), names.end(), [](const std::string& n) {
+        const std::string l = text::lower(n);
+        return l.rfind("d+", 0) == 0 || l.rfind("d-", 0) == 0 || l.rfind("data+", 0) == 0 || l.rfind("data-", 0) == 0;
+    });
+    const std::string source = o.text("source", usb_meter ? "usb" : (vi && median_of(bus_values) <= 60) || current_only ? "rail" : "node");
     b.power_source(source, o);
     if (!vi && !counter && !o.text("power_unit"))
         for (const auto& p : powers) {

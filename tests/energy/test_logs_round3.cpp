@@ -69,6 +69,11 @@ TEST(UnitsAgainstSource, KilowattHeaderOverAUsbDeviceIsRefused) {
     EXPECT_NE(why.find("more than a USB-powered device"), std::string::npos) << why;
     EXPECT_NE(why.find("in W they would be 2.5 to 5.1 W"), std::string::npos) << why;
     EXPECT_DOUBLE_EQ(parse_power_log(usb, "u.csv", "ina219-csv", {{"source", "usb"}, {"power_unit", "W"}}).w[1], 4.8);
+    // a USB meter's export (data-line voltages D+/D-) is a USB device without being told
+    const std::string meter = "Time,Power (kW),Data+ (V),Data- (V)\n0,2.5,0.6,0.6\n1,4.8,0.6,0.6\n2,5.1,0.6,0.6\n";
+    EXPECT_NE(error_of(meter).find("more than a USB-powered device"), std::string::npos) << error_of(meter);
+    const PowerTrace vi = parse_power_log("Time,Voltage (V),Current (A),D+ (V),D- (V)\n0,5.1,0.5,0.6,0.6\n1,5.1,0.6,0.6,0.6\n", "m.csv");
+    EXPECT_TRUE(mentions(vi.notes, "a USB-powered device")) << "source usb, cap 240 W";
 }
 
 // Item 3 (CodeCarbon): per-run summaries, never a trace, machines never summed.
