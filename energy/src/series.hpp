@@ -187,8 +187,9 @@ inline std::vector<Sample> counter_to_power(const std::vector<Sample>& in, std::
         if (d < 0) {
             char buf[400];
             if (!(range_j > 0)) {
-                std::snprintf(buf, sizeof buf, "energy counter '%s' runs backwards (from %.10g J at line %zu to %.10g J): a reset, a wrap or a unit "
-                              "error; pass max_energy_range_uj= (powercap's max_energy_range_uj) if the counter wraps", column.c_str(), p->v, p->line, s.v);
+                std::snprintf(buf, sizeof buf, "energy counter '%s' runs backwards (from %.10g J at line %zu to %.10g J): a reset, a wrap, or not a "
+                              "running total (energy per interval is not read as a counter); pass max_energy_range_uj= (powercap's "
+                              "max_energy_range_uj) if the counter wraps", column.c_str(), p->v, p->line, s.v);
                 text::fail(file, s.line, buf);
             }
             d += range_j;
