@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "../cli/cli_process.hpp"
 #include "pi_pmic.hpp"
 #include "trn/energy/integrate.hpp"
 #include "trn/energy/power_sampler.hpp"
@@ -121,6 +122,20 @@ TEST(CodeCarbon, RunsAndTheirJoulesPerMachine) {
     } catch (const trn::Error& e) {
         EXPECT_NE(std::string(e.what()).find("e.csv:3: energy_consumed (kWh) -0.003358 is negative"), std::string::npos) << e.what();
     }
+}
+
+// `trnkit energy runs` lists them; `energy inspect` refuses the file naming that command.
+TEST(CodeCarbon, TheRunsCommandAndTheInspectRefusal) {
+    const auto path = std::filesystem::temp_directory_path() / ("trn_emissions_" + std::to_string(::getpid()) + ".csv");
+    std::ofstream(path) << kCodeCarbon;
+    const auto runs = trn::test::run_trnkit("energy runs " + path.string());
+    EXPECT_EQ(runs.code, 0) << runs.output;
+    EXPECT_NE(runs.output.find("3 run(s) on 2 machine(s)"), std::string::npos) << runs.output;
+    EXPECT_NE(runs.output.find("machine 2: 1 run(s), 30 s measured, 12088.8 J"), std::string::npos) << runs.output;
+    const auto inspect = trn::test::run_trnkit("energy inspect " + path.string() + " --opt power=sum");
+    EXPECT_NE(inspect.code, 0);
+    EXPECT_NE(inspect.output.find("trnkit energy runs " + path.string()), std::string::npos) << inspect.output;
+    std::filesystem::remove(path);
 }
 
 // Item 2: long ("tidy") logs split into series, never interleaved or summed silently.
