@@ -278,6 +278,17 @@ TEST(TimeStamps, NvidiaSmiOffsetsAreHonoured) {
     EXPECT_NE(error_of(mixed, "nvidia-smi").find("x.log:3: timestamp '2025/09/08 17:26:51.000' has no time zone"), std::string::npos);
 }
 
+// series= is accepted by nvidia-smi logs too, meaning what gpu= means.
+TEST(LongFormLogs, NvidiaSmiTakesSeriesLikeGpu) {
+    const std::string log = "timestamp, index, power.draw [W]\n2025/09/08 17:26:50.000, 0, 40.0 W\n2025/09/08 17:26:50.010, 1, 60.0 W\n"
+                            "2025/09/08 17:26:51.000, 0, 42.0 W\n2025/09/08 17:26:51.010, 1, 62.0 W\n";
+    EXPECT_NE(error_of(log).find("2 GPUs in the log"), std::string::npos);
+    EXPECT_DOUBLE_EQ(parse_power_log(log, "s.csv", "auto", {{"series", "index=1"}}).w[0], 60.0);
+    EXPECT_DOUBLE_EQ(parse_power_log(log, "s.csv", "auto", {{"series", "all"}}).w[1], 104.0);
+    EXPECT_NE(error_of(log, "auto", {{"series", "uuid=1"}}).find("told apart by index; pass series=index=VALUE"), std::string::npos);
+    EXPECT_NE(error_of(log, "auto", {{"series", "all"}, {"gpu", "0"}}).find("not both"), std::string::npos);
+}
+
 TEST(TimeStamps, IsoNanosecondStampsWithACommaBeforeTheFraction) {
     // date --iso-8601=ns: 2025-09-08T17:26:50,250000000+08:00
     const std::string semi = "time;power_W\n2025-09-08T17:26:50,250000000+08:00;5\n2025-09-08T17:26:50,750000000+08:00;7\n"
