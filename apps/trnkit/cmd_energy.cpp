@@ -8,6 +8,7 @@
 #include "options.hpp"
 #include "trn/energy/integrate.hpp"
 #include "trn/energy/parsers.hpp"
+#include "trn/energy/run_summaries.hpp"
 #include "trn/error.hpp"
 
 namespace trn::cli {
@@ -21,7 +22,7 @@ void add_log_time_zone_options(CLI::App* c, std::vector<std::string>* opts);
 void add_energy_bench_command(CLI::App* energy);  // cmd_energy_bench.cpp
 
 void add_energy_command(CLI::App& app) {
-    auto* energy = app.add_subcommand("energy", "Power logs -> joules (inspect, integrate-span, integrate, compare, sample, bench, formats)");
+    auto* energy = app.add_subcommand("energy", "Power logs -> joules (inspect, runs, integrate-span, integrate, compare, sample, bench, formats)");
     energy->require_subcommand(1);
     struct Args {
         std::string log, format = "auto";
@@ -50,6 +51,10 @@ void add_energy_command(CLI::App& app) {
         for (const auto& w : tr.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
         for (const auto& m : tr.markers) std::printf("  marker: %.6f %s\n", m.t, m.label.c_str());
     });
+    auto* runs = energy->add_subcommand("runs", "List the runs of a per-run energy summary (CodeCarbon emissions.csv) and their joules, per machine");
+    runs->add_option("log", a->log, "Summary file")->required();
+    runs->add_option("--opt", a->opts, "Reader option KEY=VALUE (repeatable)");
+    runs->callback([a] { std::fputs(energy::format_run_summaries(energy::read_run_summaries(a->log, energy::parse_option_list(a->opts))).c_str(), stdout); });
     auto* span = energy->add_subcommand("integrate-span", "Energy of [--start, --end] (seconds on the log's clock)");
     add_log_options(span);
     span->add_option("--start", a->start, "Start time (s)")->required()->check(real_in(-1e12, 1e12));

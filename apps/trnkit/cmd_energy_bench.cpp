@@ -47,7 +47,7 @@ void add_energy_bench_command(CLI::App* energy) {
     struct Args {
         std::vector<std::string> backends{"cpu"};
         std::string source, kernel = "sobel", size = "720p", platform, out = "energy-bench";
-        std::string sysfs_root = "/sys", nvml_lib = "libnvidia-ml.so.1";
+        std::string sysfs_root = "/sys", nvml_lib = "libnvidia-ml.so.1", vcgencmd = "/usr/bin/vcgencmd";
         int frames = 50, particles = 1000, repeat = 1;
         double period_ms = 2, idle_ms = 50, lead_idle_ms = 1000, sync_unit_ms = 0;
         std::size_t min_samples = 3;
@@ -79,6 +79,7 @@ void add_energy_bench_command(CLI::App* energy) {
     c->add_flag("--no-plots", a->no_plots, "Skip the gnuplot figures");
     c->add_option("--sysfs-root", a->sysfs_root, "sysfs root for hwmon/rapl sources")->capture_default_str();
     c->add_option("--nvml-lib", a->nvml_lib, "NVML library to dlopen for nvml sources")->capture_default_str();
+    c->add_option("--vcgencmd", a->vcgencmd, "vcgencmd program the pmic:vcgencmd source runs (absolute path)")->capture_default_str();
     c->callback([a] {
         // Everything is checked before the run, which takes minutes.
         io::check_output_folder(a->out, "energy bench", a->force);
@@ -88,7 +89,7 @@ void add_energy_bench_command(CLI::App* energy) {
             if (!seen.insert(b).second) throw Error("--backend " + b + " is given twice");
         if (a->kernel == "ncc") limits::check_count("--particles", a->particles, limits::kMaxParticles, limits::kParticleBytes);
         energy::SamplerOptions so;
-        so.sysfs_root = a->sysfs_root, so.nvml_library = a->nvml_lib;
+        so.sysfs_root = a->sysfs_root, so.nvml_library = a->nvml_lib, so.vcgencmd = a->vcgencmd;
         const auto sampler = energy::make_power_sampler(a->source, so);
         std::vector<std::unique_ptr<Backend>> backends;
         std::vector<energy::BenchTarget> targets;

@@ -15,22 +15,23 @@ namespace trn::cli {
 
 void add_energy_sample_command(CLI::App* energy) {
     struct Args {
-        std::string source, out, root = "/sys", nvml_lib = "libnvidia-ml.so.1";
+        std::string source, out, root = "/sys", nvml_lib = "libnvidia-ml.so.1", vcgencmd = "/usr/bin/vcgencmd";
         double period_ms = 10, duration_s = 10;
         bool list = false;
     };
     auto a = std::make_shared<Args>();
     auto* c = energy->add_subcommand("sample", "Sample power live from hwmon (ina2xx, ina3221), RAPL powercap or NVML into a trnkit power log");
-    c->add_option("--source", a->source, "hwmon:NAME[:CHANNEL], rapl:NAME or nvml:INDEX[:power|:energy] (see --list)");
+    c->add_option("--source", a->source, "hwmon:NAME[:CHANNEL], rapl:NAME, nvml:INDEX[:power|:energy] or pmic:vcgencmd (see --list)");
     c->add_flag("--list", a->list, "List the power sources found and exit");
     c->add_option("--period-ms", a->period_ms, "Polling period (ms)")->capture_default_str()->check(real_in(0, 60000, Open::low));
     c->add_option("--duration-s", a->duration_s, "How long to sample (s)")->capture_default_str()->check(real_in(0, 604800, Open::low));
     c->add_option("-o,--out", a->out, "Power log to write (default: standard output)");
     c->add_option("--sysfs-root", a->root, "sysfs root (for tests and containers)")->capture_default_str();
     c->add_option("--nvml-lib", a->nvml_lib, "NVML library to dlopen for nvml sources")->capture_default_str();
+    c->add_option("--vcgencmd", a->vcgencmd, "vcgencmd program the pmic:vcgencmd source runs (absolute path)")->capture_default_str();
     c->callback([a] {
         energy::SamplerOptions so;
-        so.sysfs_root = a->root, so.nvml_library = a->nvml_lib;
+        so.sysfs_root = a->root, so.nvml_library = a->nvml_lib, so.vcgencmd = a->vcgencmd;
         if (a->list) {
             const auto all = energy::list_power_sources(so);
             if (all.empty() || (all.size() == 1 && all.back().rfind("nvml: not available", 0) == 0))

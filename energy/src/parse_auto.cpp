@@ -5,6 +5,7 @@
 
 #include "text_input.hpp"
 #include "trn/energy/parsers.hpp"
+#include "trn/energy/run_summaries.hpp"
 #include "trn/energy/time_zone.hpp"
 
 namespace trn::energy {
@@ -51,6 +52,14 @@ std::string detect_power_log_format(std::string_view input, const std::string& n
     const std::string_view l = text::trim(lines[first].text);
     if (text::starts_with(l, "# trnkit-power")) return "trnkit";
     if (text::starts_with(l, "# SIMULATED INA219")) return "ina219-raw";
+    if (looks_like_codecarbon(input)) return "codecarbon";
+    if (looks_like_scaphandre(input)) return "scaphandre";
+    if (looks_like_jtop(l)) return "jtop";
+    if (looks_like_pi_pmic(input)) return "pi5-pmic";
+    if (looks_like_json(input))
+        text::fail(name, lines[first].number, std::string("a JSON document") + (l.front() == '{' && lines.size() > first + 1 ? " (JSON Lines: one object per line)" : "") +
+                                                  ", not a CSV or text power log; the JSON read here is Scaphandre's (format scaphandre); "
+                                                  "for another tool's JSON, export a CSV with a time and a power column");
     for (const auto& line : lines) {  // a raw register header after comments
         const auto s = text::trim(line.text);
         if (s.empty() || s.front() == '#') continue;
@@ -70,7 +79,11 @@ std::string detect_power_log_format(std::string_view input, const std::string& n
         if (i < first + 50 && s.find("RAM ") != std::string_view::npos &&
             (s.find("VDD_") != std::string_view::npos || s.find("POM_") != std::string_view::npos || s.find("VIN_") != std::string_view::npos))
             return "tegrastats";
-        if (i < first + 50 && (s.find(",Joules,") != std::string_view::npos || s.find(";Joules;") != std::string_view::npos)) return "perf-stat";
+        // perf stat -x: a row "time,value,Joules,event" (a CSV whose header names a Joules column is not one)
+        if (i < first + 50 && (s.find(",Joules,") != std::string_view::npos || s.find(";Joules;") != std::string_view::npos)) {
+            const auto f = text::split(text::trim(s), s.find(",Joules,") != std::string_view::npos ? ',' : ';');
+            if (f.size() >= 4 && text::to_number(f[0]) && text::trim(f[2]) == "Joules") return "perf-stat";
+        }
         const auto tok = text::split_ws(s);
         if (i < first + 50 && tok.size() >= 4 && text::to_number(tok[0]) && tok[2] == "Joules") return "perf-stat";  // perf stat -I text
         if (i < first + 50 && !tok.empty() && tok.front() == "Time" && std::find(tok.begin(), tok.end(), "Watts") != tok.end()) return "powerstat";
@@ -90,6 +103,14 @@ std::string detect_power_log_format(std::string_view input, const std::string& n
     // as many fields and a number.
     for (char sep : {',', ';', '\t'})
         if (text::split(l, sep).size() >= 2) return "ina219-csv";
+    // the same after '#' comment lines (a commented header or a logger's remarks)
+    for (const auto& line : lines) {
+        const auto c = text::trim(line.text);
+        if (c.empty() || c.front() == '#') continue;
+        for (char sep : {',', ';', '\t'})
+            if (text::split(c, sep).size() >= 2 && l.front() == '#') return "ina219-csv";
+        break;
+    }
     const auto head = text::split_ws(l);
     std::size_t next = first + 1;
     while (next < lines.size() && (text::trim(lines[next].text).empty() || text::trim(lines[next].text).front() == '#')) ++next;
@@ -97,6 +118,20 @@ std::string detect_power_log_format(std::string_view input, const std::string& n
         const auto row = text::split_ws(lines[next].text);
         const bool numeric = std::any_of(row.begin(), row.end(), [](std::string_view v) { return text::to_number(v).has_value(); });
         if (numeric && (row.size() == head.size() || row.size() == head.size() + 1)) return "ina219-csv";
+    }
+    // A preamble (device name, date, settings) before a CSV table: a line naming columns under ',',
+    // ';' or tab, followed by a row with as many fields and a number.
+    for (std::size_t i = first + 1; i < std::min<std::size_t>(lines.size(), first + 50); ++i) {
+        const char d = text::detect_delimiter(lines[i].text);
+        if (d == 0) continue;
+        const auto h = text::split_fields(lines[i].text, d);
+        if (h.size() < 2 || std::any_of(h.begin(), h.end(), [](const std::string& x) { return x.empty() || text::to_number(x); })) continue;
+        std::size_t r = i + 1;
+        while (r < lines.size() && (text::trim(lines[r].text).empty() || text::trim(lines[r].text).front() == '#')) ++r;
+        if (r == lines.size()) break;
+        const auto row = text::split_fields(lines[r].text, d);
+        if (row.size() == h.size() && std::any_of(row.begin(), row.end(), [](const std::string& x) { return text::to_number(x).has_value(); }))
+            return "ina219-csv";
     }
     text::fail(name, lines[first].number, "unrecognised power log (first line '" + std::string(l.substr(0, 80)) +
                                               "'); name its format (one of trnkit energy formats)");

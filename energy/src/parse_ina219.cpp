@@ -5,8 +5,10 @@
 #include <cstdio>
 #include <functional>
 #include <map>
+#include <set>
 
 #include "option_reader.hpp"
+#include "series.hpp"
 #include "trace_builder.hpp"
 #include "trn/energy/ina219.hpp"
 #include "trn/energy/parsers.hpp"
@@ -15,49 +17,12 @@ namespace trn::energy {
 namespace {
 
 using text::Line;
+using text::split_fields;
+using text::detect_delimiter;
 
 bool is_comment(std::string_view l) {
     l = text::trim(l);
     return l.empty() || l.front() == '#';
-}
-
-// The separator of a logger CSV: the one of ',', ';' and tab the header holds most often
-// (ties in that order), else runs of spaces (an aligned table). 0 means whitespace.
-char detect_delimiter(std::string_view line) {
-    char best = 0;
-    std::size_t most = 0;
-    for (char c : {',', ';', '\t'}) {
-        const auto n = static_cast<std::size_t>(std::count(line.begin(), line.end(), c));
-        if (n > most) most = n, best = c;
-    }
-    return best;
-}
-
-// Fields of one row: double-quoted fields keep their separators ("30,3"), "" is a quote.
-std::vector<std::string> split_fields(std::string_view line, char delim) {
-    std::vector<std::string> out;
-    if (delim == 0) {
-        for (auto f : text::split_ws(line)) out.emplace_back(f);
-        return out;
-    }
-    std::string cur;
-    bool quoted = false;
-    for (std::size_t i = 0; i < line.size(); ++i) {
-        const char c = line[i];
-        if (quoted) {
-            if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') cur += '"', ++i;
-            else if (c == '"') quoted = false;
-            else cur += c;
-        } else if (c == '"' && text::trim(cur).empty()) {
-            cur.clear(), quoted = true;
-        } else if (c == delim) {
-            out.push_back(std::string(text::trim(cur))), cur.clear();
-        } else {
-            cur += c;
-        }
-    }
-    out.push_back(std::string(text::trim(cur)));
-    return out;
 }
 
 // "30,3" / "-0,25": a number written with a decimal comma (one comma, digits on both sides).
@@ -73,7 +38,14 @@ bool decimal_comma_number(std::string_view f) {
 
 // Unit scale read from a column name ("current_mA", "power [W]", "bus(V)", "total_watts").
 std::optional<double> unit_scale_from_name(const std::string& name) {
-    const std::string n = text::lower(name);
+    // "µA" (micro sign or Greek mu) read as "uA"
+    const std::string lowered = text::lower(name);
+    std::string n;
+    for (std::size_t i = 0; i < lowered.size(); ++i) {
+        const bool micro = i + 1 < lowered.size() && ((lowered[i] == '\xc2' && lowered[i + 1] == '\xb5') || (lowered[i] == '\xce' && lowered[i + 1] == '\xbc'));
+        n += micro ? 'u' : lowered[i];
+        i += micro;
+    }
     for (const auto& [word, scale] : std::vector<std::pair<std::string, double>>{
              {"milliwatts", 1e-3}, {"milliwatt", 1e-3}, {"kilowatts", 1e3}, {"kilowatt", 1e3}, {"watts", 1}, {"watt", 1}})
         if (n.find(word) != std::string::npos) return scale;
@@ -94,6 +66,31 @@ double unit_scale(const std::string& unit, const std::string& option, const std:
     const auto it = scales.find(text::lower(unit));
     if (it == scales.end()) throw Error(parser + ": option " + option + "='" + unit + "' is not a unit (V, mV, A, mA, W, mW, kW ...)");
     return it->second;
+}
+
+// Joules per unit of an energy counter: uJ (powercap energy_uj), mJ, J, mWh, Wh, kWh.
+const std::vector<std::pair<std::string, double>>& energy_units() {
+    static const std::vector<std::pair<std::string, double>> units = {{"kwh", 3.6e6}, {"mwh", 3.6}, {"wh", 3600}, {"uj", 1e-6},
+                                                                      {"\xc2\xb5j", 1e-6}, {"\xce\xbcj", 1e-6}, {"mj", 1e-3}, {"joules", 1}, {"joule", 1}, {"j", 1}};
+    return units;
+}
+
+double energy_unit_scale(const std::string& unit, const std::string& parser) {
+    for (const auto& [u, scale] : energy_units())
+        if (text::lower(unit) == u) return scale;
+    throw Error(parser + ": option energy_unit='" + unit + "' is not an energy unit (uJ, mJ, J, mWh, Wh, kWh)");
+}
+
+// "energy_uj", "Energy [kWh]", "cumulative_energy_wh", "pkg_joules" -> joules per unit.
+std::optional<double> energy_scale_from_name(const std::string& name) {
+    const std::string n = text::lower(name);
+    for (const auto& [u, scale] : energy_units())
+        for (const std::string& wrap : {"_" + u, "[" + u + "]", "(" + u + ")", " " + u, "/" + u})
+            if (n.size() >= wrap.size() && (n.compare(n.size() - wrap.size(), wrap.size(), wrap) == 0 ||
+                                            ((wrap[0] == '[' || wrap[0] == '(') && n.find(wrap) != std::string::npos)))
+                return scale;
+    if (n.find("joule") != std::string::npos) return 1.0;
+    return std::nullopt;
 }
 
 struct Column {
@@ -117,12 +114,61 @@ double median_step(const std::vector<double>& t) {
 PowerTrace parse_ina219_csv(std::string_view input, const std::string& name, const ParseOptions& options) {
     const std::string parser = name + " (ina219-csv)";
     OptionReader o(options, parser, {"columns", "time", "bus_v", "shunt_v", "current", "power", "time_unit", "period_s",
-                                     "bus_v_unit", "current_unit", "power_unit", "use", "source", "max_power_w"});
+                                     "bus_v_unit", "current_unit", "power_unit", "use", "source", "max_power_w", "energy", "energy_unit",
+                                     "max_energy_range_uj", "series", "voltage"});
     const auto lines = text::split_lines(input);
     std::size_t first = 0;
     while (first < lines.size() && is_comment(lines[first].text)) ++first;
     if (first == lines.size()) throw Error(parser + ": no data lines");
-    const char delim = detect_delimiter(lines[first].text);
+    // The line naming the columns: the first non-comment line, unless that is a data row under a
+    // '#'-commented header ("# time_s,power_W"), or a preamble (device name, date, settings) comes
+    // before the table: then the first line (within 50) that names as many columns as the row
+    // after it holds, with a number among them.
+    std::string header_text(lines[first].text);
+    std::size_t header_at = first;
+    std::vector<std::string> layout_notes;
+    if (!o.text("columns")) {
+        auto names_only = [](std::string_view l) {
+            const auto f = split_fields(l, detect_delimiter(l));
+            return f.size() >= 2 && std::none_of(f.begin(), f.end(), [](const std::string& x) {
+                       return x.empty() || text::to_number(x) || text::parse_datetime(x) || decimal_comma_number(x);
+                   });
+        };
+        auto next_row = [&](std::size_t i) {
+            do ++i;
+            while (i < lines.size() && is_comment(lines[i].text));
+            return i;
+        };
+        auto heads_table = [&](std::string_view h, std::size_t row) {
+            if (row >= lines.size()) return false;
+            const char d = detect_delimiter(h);
+            auto f = split_fields(lines[row].text, d);
+            const std::size_t n = split_fields(h, d).size();
+            while (f.size() > n && f.back().empty()) f.pop_back();
+            return f.size() == n && std::any_of(f.begin(), f.end(), [](const std::string& x) { return text::to_number(x).has_value(); });
+        };
+        const bool first_names = names_only(lines[first].text);
+        std::size_t comment = first;
+        while (comment > 0 && text::trim(lines[comment - 1].text).empty()) --comment;
+        std::string commented = comment > 0 ? std::string(text::trim(text::trim(lines[comment - 1].text).substr(1))) : "";
+        if (!first_names && comment > 0 && names_only(commented) && heads_table(commented, first)) {
+            header_text = commented;
+            header_at = comment - 1;
+            layout_notes.push_back("header read from the comment line " + std::to_string(lines[header_at].number) + " ('#' before the column names)");
+        } else if (!first_names || !heads_table(lines[first].text, next_row(first))) {
+            const std::size_t n_first = split_fields(lines[first].text, detect_delimiter(lines[first].text)).size();
+            for (std::size_t i = next_row(first), seen = 0; i < lines.size() && seen < 50; i = next_row(i), ++seen)
+                if (names_only(lines[i].text) && heads_table(lines[i].text, next_row(i)) &&
+                    split_fields(lines[i].text, detect_delimiter(lines[i].text)).size() != n_first) {
+                    header_text = std::string(lines[i].text);
+                    header_at = i;
+                    layout_notes.push_back("skipped the preamble before the header at line " + std::to_string(lines[i].number) + " (lines " +
+                                           std::to_string(lines[first].number) + "-" + std::to_string(lines[i].number - 1) + ")");
+                    break;
+                }
+        }
+    }
+    const char delim = detect_delimiter(header_text);
     const std::string delim_name = delim == ',' ? "','" : delim == ';' ? "';'" : delim == '\t' ? "tab" : "spaces";
 
     std::vector<std::string> names;
@@ -130,7 +176,7 @@ PowerTrace parse_ina219_csv(std::string_view input, const std::string& name, con
     if (const auto cols = o.text("columns")) {
         for (auto c : text::split(*cols, ',')) names.emplace_back(text::trim(c));
     } else {
-        const auto fields = split_fields(lines[first].text, delim);
+        const auto fields = split_fields(header_text, delim);
         const bool header = std::none_of(fields.begin(), fields.end(), [](const std::string& f) {
             return text::to_number(f) || text::parse_datetime(f) || decimal_comma_number(f);
         });
@@ -138,7 +184,7 @@ PowerTrace parse_ina219_csv(std::string_view input, const std::string& name, con
             text::fail(name, lines[first].number,
                        "no header row naming the columns; pass columns=... (e.g. columns=index,sensor,bus_V,current_mA,power_W)");
         names = fields;
-        data_start = first + 1;
+        data_start = std::max(first, header_at + 1);
     }
     const std::size_t ncols = names.size();
 
@@ -155,11 +201,13 @@ PowerTrace parse_ina219_csv(std::string_view input, const std::string& name, con
         if (is_comment(l.text)) continue;
         Row r{l.number, split_fields(l.text, delim)};
         while (r.f.size() > ncols && r.f.back().empty()) r.f.pop_back();  // trailing separators
-        // "2024-03-12 10:00:01" split by an aligned-space separator: one field again.
-        if (delim == 0 && r.f.size() == ncols + 1)
+        // "2024-03-12 10:00:01" split by an aligned-space separator, or "2025-09-08T17:26:50,123456789+08:00"
+        // (date --iso-8601=ns) split by a ',' separator: one field again.
+        if ((delim == 0 || delim == ',') && r.f.size() == ncols + 1)
             for (std::size_t i = 0; i + 1 < r.f.size(); ++i)
-                if (!text::parse_datetime(r.f[i]) && text::parse_datetime(r.f[i] + " " + r.f[i + 1])) {
-                    r.f[i] += " " + r.f[i + 1];
+                if (const std::string glue = delim == ',' ? "," : " ";
+                    (delim == ',' || !text::parse_datetime(r.f[i])) && text::parse_datetime(r.f[i] + glue + r.f[i + 1])) {
+                    r.f[i] += glue + r.f[i + 1];
                     r.f.erase(r.f.begin() + static_cast<std::ptrdiff_t>(i) + 1);
                     break;
                 }
@@ -243,18 +291,56 @@ PowerTrace parse_ina219_csv(std::string_view input, const std::string& name, con
     Column bus = find("bus_v", [&](const std::string& n) {
         return (has(n, "bus") || has(n, "volt") || has(n, "spannung") || n == "v" || n == "u" || n == "v_bus") && !has(n, "shunt");
     });
-    if (time.index < 0) throw Error(parser + ": no time column among '" + std::string(lines[first].text.substr(0, 200)) + "'; pass time=NAME");
+    if (time.index < 0) throw Error(parser + ": no time column among '" + header_text.substr(0, 200) + "'; pass time=NAME");
     const std::string use = o.text("use", "vi");
     if (use != "vi" && use != "power") throw Error(parser + ": option use must be vi or power");
-    const bool vi = bus.index >= 0 && current.index >= 0 && !(use == "power" && !powers.empty());
-    if (!vi && powers.empty()) throw Error(parser + ": needs a power column or bus voltage and current columns");
-    if (!vi && powers.size() > 1 && power_option != "sum") {
+    // A cumulative energy column (energy_uj, J, mWh, kWh) is read as a counter: its differences
+    // over time are the power. Taken when named (energy=) or when there is nothing else to read.
+    Column energy;
+    if (o.text("energy")) {
+        energy = find("energy", [](const std::string&) { return false; });
+        powers.clear();
+    } else if (!(bus.index >= 0 && current.index >= 0) && powers.empty()) {
+        std::vector<Column> energies;
+        for (std::size_t i = 0; i < names.size(); ++i)
+            if (static_cast<int>(i) != time.index && energy_like(text::lower(names[i]))) energies.push_back({static_cast<int>(i), 1, names[i]});
+        if (energies.size() > 1) {
+            std::string list;
+            for (const auto& e : energies) list += (list.empty() ? "'" : ", '") + e.name + "'";
+            throw Error(parser + ": " + std::to_string(energies.size()) + " energy columns (" + list +
+                        ") and no power column: pass energy=NAME for the cumulative counter to read; none is picked silently");
+        }
+        if (!energies.empty()) energy = energies.front();
+    }
+    const bool counter = energy.index >= 0;
+    const bool vi = !counter && bus.index >= 0 && current.index >= 0 && !(use == "power" && !powers.empty());
+    // A current-only export (Nordic PPK2, Otii, Joulescope with only current): power is the current
+    // times the supply voltage the user states; never assumed.
+    const bool current_only = !vi && !counter && powers.empty() && current.index >= 0 && bus.index < 0;
+    const auto supply_v = o.number("voltage");
+    if (supply_v && !current_only)
+        throw Error(parser + ": option voltage= is for a current-only log (a current column, no bus voltage, power or energy column); this log has " +
+                    (vi ? "bus voltage and current" : counter ? "an energy counter" : "a power column"));
+    if (supply_v && !(*supply_v > 0 && *supply_v < 1000)) throw Error(parser + ": option voltage must be a supply voltage in (0, 1000) V");
+    if (current_only && !supply_v)
+        throw Error(parser + ": a current-only log (column '" + current.name +
+                    "', no voltage or power: a PPK2, Otii or Joulescope current export): energy needs the supply voltage; pass voltage=V (the source "
+                    "voltage the device ran at)");
+    if (!vi && !counter && !current_only && powers.empty())
+        throw Error(parser + ": needs a power column, bus voltage and current columns, or a cumulative energy column (energy_uj, energy_J, ..._kWh)");
+    if (counter) {
+        if (const auto u = o.text("energy_unit")) energy.scale = energy_unit_scale(*u, parser);
+        else if (const auto sc = energy_scale_from_name(energy.name)) energy.scale = *sc;
+        else
+            throw Error(parser + ": energy column '" + energy.name + "' has no unit in its name (uJ? J? Wh? kWh?); pass energy_unit=uJ, mJ, J, mWh, Wh or kWh");
+    }
+    if (!vi && !counter && powers.size() > 1 && power_option != "sum") {
         std::string list;
         for (const auto& p : powers) list += (list.empty() ? "'" : ", '") + p.name + "'";
         throw Error(parser + ": " + std::to_string(powers.size()) + " power columns (" + list +
                     "): pass power=NAME for one of them or power=sum for their sum; none is picked silently");
     }
-    if (vi || power_option != "sum") powers.resize(1);
+    if (vi || counter || power_option != "sum") powers.resize(1);
 
     auto number_at = [&](const Row& r, const Column& c) -> std::optional<double> {
         if (c.index < 0 || static_cast<std::size_t>(c.index) >= r.f.size()) return std::nullopt;
@@ -325,8 +411,8 @@ PowerTrace parse_ina219_csv(std::string_view input, const std::string& name, con
                     unit_notes.push_back(buf);
                 }
         }
-        if (!current_known && vi)
-            throw Error(parser + ": current column '" + current.name + "' has no unit in its name (A? mA?); pass current_unit=A or mA");
+        if (!current_known && (vi || current_only))
+            throw Error(parser + ": current column '" + current.name + "' has no unit in its name (A? mA? uA?); pass current_unit=A, mA or uA");
     }
 
     std::string time_unit = o.text("time_unit", "");
@@ -345,20 +431,75 @@ PowerTrace parse_ina219_csv(std::string_view input, const std::string& name, con
     if (vi)
         for (const auto& r : rows)
             if (const auto v = number_at(r, bus)) bus_values.push_back(std::abs(*v * bus.scale));
-    const std::string source = o.text("source", vi && median_of(bus_values) <= 60 ? "rail" : "node");
+    // A USB meter's export names the data lines' voltages (D+, D-, Data+ (V), ...): a USB device.
+    const bool usb_meter = std::any_of(names.begin(), names.end(), [](const std::string& n) {
+        const std::string l = text::lower(n);
+        return l.rfind("d+", 0) == 0 || l.rfind("d-", 0) == 0 || l.rfind("data+", 0) == 0 || l.rfind("data-", 0) == 0;
+    });
+    const std::string source = o.text("source", usb_meter ? "usb" : (vi && median_of(bus_values) <= 60) || current_only ? "rail" : "node");
     b.power_source(source, o);
+    if (!vi && !counter && !o.text("power_unit"))
+        for (const auto& p : powers) {
+            if (p.index < 0 || !unit_scale_from_name(p.name)) continue;
+            std::vector<double> raw;
+            for (const auto& r : rows)
+                if (const auto x = number_at(r, p)) raw.push_back(*x);
+            check_power_unit_against_source(name, p.name, p.scale, raw, b.power_source(), "power_unit");
+        }
+    for (auto& n : layout_notes) b.note(std::move(n));
     for (auto& n : unit_notes) b.note(std::move(n));
     if (decimal_commas)
         b.note(delim == ',' ? "decimal commas under a ',' separator: every row has twice the header's fields, read as value pairs 'int,frac'"
                             : "decimal commas (a comma-decimal locale, separator " + delim_name + ") read as decimal points");
     std::string quantity;
-    if (vi) quantity = bus.name + "*" + current.name;
+    if (counter) quantity = energy.name + " (cumulative energy counter; power = its differences over time)";
+    else if (vi) quantity = bus.name + "*" + current.name;
+    else if (current_only) quantity = current.name + " x voltage=" + o.text("voltage", "") + " V";
     else
         for (const auto& p : powers) quantity += (quantity.empty() ? "" : "+") + p.name;
     b.trace().quantity = quantity;
+    // Key columns of a long-form log (one row per device x domain x time): the columns read for
+    // nothing else whose values tell series apart, and any column series= names.
+    std::vector<int> key_cols;
+    {
+        std::set<int> used = {time.index, date_col, shunt.index, bus.index, current.index, energy.index};
+        for (const auto& p : powers) used.insert(p.index);
+        std::set<std::string> named;
+        if (const auto sel = o.text("series"); sel && *sel != "all")
+            for (auto clause : text::split(sel->rfind("sum:", 0) == 0 ? sel->substr(4) : *sel, ','))
+                named.insert(text::lower(text::trim(clause.substr(0, clause.find('=')))));
+        for (std::size_t i = 0; i < ncols; ++i) {
+            if (used.count(static_cast<int>(i))) continue;
+            std::vector<std::string> values;
+            for (const auto& r : rows)
+                if (i < r.f.size()) values.push_back(r.f[i]);
+            if (named.count(text::lower(names[i])) || series::is_key_column(names[i], values)) key_cols.push_back(static_cast<int>(i));
+        }
+    }
+    std::vector<series::Key> series_keys;
+    auto series_of = [&](const Row& r) {
+        series::Key k;
+        for (int c : key_cols) k.push_back({names[c], static_cast<std::size_t>(c) < r.f.size() ? r.f[c] : ""});
+        const auto it = std::find(series_keys.begin(), series_keys.end(), k);
+        if (it != series_keys.end()) return static_cast<std::size_t>(it - series_keys.begin());
+        series_keys.push_back(std::move(k));
+        return series_keys.size() - 1;
+    };
+    std::vector<series::Sample> samples;
     std::size_t bad = 0, first_bad = 0;
     std::vector<double> vi_ratio;
-    bool zone_known = true;
+    std::optional<bool> zoned;  // date-time stamps: all with a UTC offset, or none (a mix is refused)
+    auto stamp = [&](const std::string& tf, std::size_t line) -> std::optional<double> {
+        bool known = false;
+        const auto d = text::parse_datetime(tf, &known);
+        if (!d) return d;
+        if (zoned && *zoned != known)
+            text::fail(name, line, "time stamp '" + tf.substr(0, 40) + "' " + (known ? "carries a UTC offset" : "has no time zone") + " while the rows before it " +
+                                       (known ? "have none" : "carry one") + ": one kind of stamp per log");
+        zoned = known;
+        b.trace().wall_clock = true;
+        return d;
+    };
     for (const Row& r : rows) {
         const auto& f = r.f;
         auto get = [&](const Column& c) -> std::optional<double> {
@@ -372,15 +513,19 @@ PowerTrace parse_ina219_csv(std::string_view input, const std::string& name, con
                 tf = f[date_col] + " " + tf;
             if (time_unit == "auto") {
                 if (auto n = text::to_number(tf)) t = n;
-                else if (auto d = text::parse_datetime(tf, &zone_known)) { t = d; b.trace().wall_clock = true; }
+                else if (auto d = stamp(tf, r.line)) t = d;
             } else if (time_unit == "iso") {
-                if (auto d = text::parse_datetime(tf, &zone_known)) { t = d; b.trace().wall_clock = true; }
+                if (auto d = stamp(tf, r.line)) t = d;
             } else if (auto n = text::to_number(tf)) {
                 t = time_unit == "ms" ? *n * 1e-3 : time_unit == "us" ? *n * 1e-6 : time_unit == "index" ? *n * period : *n;
             }
         }
         std::optional<double> w;
-        if (vi) {
+        if (counter) {
+            w = get(energy);  // joules so far
+        } else if (current_only) {
+            if (const auto i = get(current)) w = *i * *supply_v;
+        } else if (vi) {
             const auto v = get(bus), i = get(current);
             if (v && i) w = *v * *i;
             if (const auto p = get(powers[0]); w && p && std::abs(*w) > 1e-3) vi_ratio.push_back(*p / *w);
@@ -396,13 +541,41 @@ PowerTrace parse_ina219_csv(std::string_view input, const std::string& name, con
         }
         if (!t || !w) {
             if (bad++ == 0) first_bad = r.line;
-            b.drop(r.line, "missing or unreadable time/power fields");
+            b.drop(r.line, counter ? "missing or unreadable time/energy fields" : "missing or unreadable time/power fields");
             continue;
         }
-        b.add(r.line, *t, *w);
+        samples.push_back({r.line, *t, *w, series_of(r)});
     }
     if (bad * 2 > rows.size() && bad > 0)
         text::fail(name, first_bad, "most rows are unreadable (" + std::to_string(bad) + "); check columns/delimiter");
+    if (series_keys.size() > 1 && !o.text("series") && !series::interleaved(samples)) {  // labels in blocks: one trace
+        for (auto& x : samples) x.series = 0;
+        series_keys = {series::Key{}};
+    }
+    const series::Selection sel = series::select(series_keys, o.text("series"), parser, "rows");
+    if (series_keys.size() > 1 || o.text("series"))
+        b.note(std::string(sel.sum ? "power is the sum of series " : "series ") + sel.described + " (series=" + o.text("series", "") + ") of " +
+               std::to_string(series_keys.size()) + " in this long-form log" + (sel.sum ? ", per poll at its first row's time" : ""));
+    if (sel.sum) b.trace().quantity = "sum of " + b.trace().quantity + " over " + sel.described;
+    else if (series_keys.size() > 1) b.trace().quantity += " of " + sel.described;
+    std::vector<series::Sample> out;
+    for (const auto& x : samples)
+        if (sel.chosen[x.series]) out.push_back(x);
+    if (counter) {
+        const double range_uj = o.number("max_energy_range_uj", 0);
+        if (o.text("max_energy_range_uj") && !(range_uj > 0)) throw Error(parser + ": option max_energy_range_uj must be > 0");
+        std::vector<std::optional<double>> start;
+        std::size_t wraps = 0;
+        out = series::counter_to_power(out, series_keys.size(), range_uj * 1e-6, name, energy.name, start, wraps, b);
+        b.trace().kind = SampleKind::IntervalMean;
+        for (const auto& st : start)
+            if (st && (!b.trace().first_interval_start || *st < *b.trace().first_interval_start)) b.trace().first_interval_start = st;
+        b.note("energy counter '" + energy.name + "' read as differences: each reading's power is the mean over the interval since the one before "
+               "(the first reading starts the first interval); whole-log joules are the counter's rise");
+        if (wraps) b.note(std::to_string(wraps) + " counter wrap(s) unwrapped at max_energy_range_uj=" + o.text("max_energy_range_uj", ""));
+    }
+    if (sel.sum) out = series::sum_per_poll(out, sel.chosen, name, b);
+    for (const auto& x : out) b.add(x.line, x.t, x.v);
     if (!vi_ratio.empty()) {
         std::nth_element(vi_ratio.begin(), vi_ratio.begin() + vi_ratio.size() / 2, vi_ratio.end());
         const double r = vi_ratio[vi_ratio.size() / 2];
@@ -413,7 +586,7 @@ PowerTrace parse_ina219_csv(std::string_view input, const std::string& name, con
         }
     }
     if (powers.size() > 1) b.note("power is the sum of " + std::to_string(powers.size()) + " columns (power=sum): " + quantity);
-    b.trace().local_time = b.trace().wall_clock && !zone_known;
+    b.trace().local_time = b.trace().wall_clock && !zoned.value_or(true);
     if (b.trace().local_time) b.note("time stamps have no time zone; taken as UTC (timezone= / utc_offset= to convert)");
     if (!b.trace().w.empty() && *std::min_element(b.trace().w.begin(), b.trace().w.end()) < 0)
         b.note("negative power readings present (shunt offset or reverse current); kept as read");

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <set>
 
 #include "option_reader.hpp"
@@ -68,7 +69,7 @@ bool data_field(std::string_view v) {
 
 PowerTrace parse_nvidia_smi(std::string_view input, const std::string& name, const ParseOptions& options) {
     const std::string parser = name + " (nvidia-smi)";
-    OptionReader o(options, parser, {"column", "gpu", "columns", "interval_ms", "max_power_w"});
+    OptionReader o(options, parser, {"column", "gpu", "series", "columns", "interval_ms", "max_power_w"});
     const auto lines = text::split_lines(input);
     std::size_t hi = 0;
     while (hi < lines.size() && text::trim(lines[hi].text).empty()) ++hi;
@@ -96,11 +97,25 @@ PowerTrace parse_nvidia_smi(std::string_view input, const std::string& name, con
     std::string power_name = o.text("column", col("power.draw.instant") >= 0 ? "power.draw.instant" : "power.draw");
     const int cp = col(power_name);
     if (cp < 0) text::fail(name, lines[hi].number, "header has no '" + power_name + "' column");
-    const auto gpu = o.text("gpu");
+    // series= (the option every long-form log takes) says the same as gpu=: series=all, or
+    // series=KEY=VALUE with KEY the column the GPUs are told apart by (checked below).
+    auto gpu = o.text("gpu");
+    std::string series_key;
+    if (const auto sr = o.text("series")) {
+        if (gpu) throw Error(parser + ": give gpu= or series=, not both");
+        const auto eq = sr->find('=');
+        if (*sr != "all" && (eq == std::string::npos || eq == 0 || eq + 1 == sr->size()))
+            throw Error(parser + ": series='" + *sr + "': expected series=all or series=KEY=VALUE (KEY: index, uuid, pci.bus_id or gpu)");
+        gpu = *sr == "all" ? *sr : sr->substr(eq + 1);
+        if (*sr != "all") series_key = text::lower(sr->substr(0, eq));
+    }
 
     struct Row { std::size_t line; double t; double w; std::vector<std::string> ids; };
     std::vector<Row> rows;
     TraceBuilder b(name, "nvidia-smi");
+    // Stamps with a UTC offset ("2025-09-08T17:26:50+08:00") are absolute; zone-less ones are local
+    // time. One kind per log: a mix is refused at the first stamp that differs.
+    std::optional<bool> zoned;
     // Columns that can tell GPUs apart, in order of preference.
     std::vector<std::pair<std::string, int>> id_cols;
     for (const char* n : {"index", "uuid", "pci.bus_id", "gpu", "gpu_index", "gpu_id", "name"})
@@ -115,8 +130,13 @@ PowerTrace parse_nvidia_smi(std::string_view input, const std::string& name, con
         }
         double t = 0;
         if (ct >= 0) {
-            const auto ts = text::parse_datetime(f[ct]);
+            bool known = false;
+            const auto ts = text::parse_datetime(f[ct], &known);
             if (!ts) text::fail(name, l.number, "timestamp '" + std::string(text::trim(f[ct])) + "' is not YYYY/MM/DD HH:MM:SS.mmm");
+            if (zoned && *zoned != known)
+                text::fail(name, l.number, "timestamp '" + std::string(text::trim(f[ct])) + "' " + (known ? "carries a UTC offset" : "has no time zone") +
+                                               " while the rows before it " + (known ? "have none" : "carry one") + ": one kind of stamp per log");
+            zoned = known;
             t = *ts;
         }
         std::string_view pv = text::trim(f[cp]);
@@ -198,6 +218,12 @@ PowerTrace parse_nvidia_smi(std::string_view input, const std::string& name, con
                    "several GPUs in one log: " + std::to_string(n_gpus) + " GPUs in the log (" + list + "); pass gpu=ID for one (told apart by " + told_by +
                        ") or gpu=all for their sum; none is picked silently");
     const bool all = gpu && *gpu == "all";
+    if (!series_key.empty()) {
+        const std::string by = told_by.empty() ? (id_cols.empty() ? "" : id_cols.front().first) : told_by.rfind("their order", 0) == 0 ? "gpu" : told_by;
+        if (series_key != by)
+            throw Error(parser + ": series key '" + series_key + "': the GPUs of this log are told apart by " + (by.empty() ? "nothing (one GPU)" : by) +
+                        (by.empty() ? "" : "; pass series=" + by + "=VALUE"));
+    }
     if (gpu && !all) {
         if (told_by.empty() && id_cols.empty()) throw Error(parser + ": gpu=" + *gpu + " given but the log has no index, uuid or pci.bus_id column");
         if (told_by.empty()) {
@@ -236,7 +262,9 @@ PowerTrace parse_nvidia_smi(std::string_view input, const std::string& name, con
         }
         if (n_gpus > 1) b.note("GPU " + *gpu + " of " + std::to_string(n_gpus) + " in the log (told apart by " + told_by + ")");
     }
-    if (ct >= 0) {
+    if (ct >= 0 && zoned.value_or(false)) {
+        b.note("time stamps carry their UTC offset: read as absolute time");
+    } else if (ct >= 0) {
         b.trace().local_time = true;
         b.note("time stamps have no time zone (the logging machine's local time); taken as UTC (timezone= / utc_offset= to convert)");
     } else {

@@ -11,6 +11,10 @@
 namespace trn::energy {
 namespace {
 
+// A Jetson module's input rail holds every other rail of the module: a sum of rails must leave
+// it out (or be it alone), else the joules inside it count twice.
+bool input_rail(std::string_view n) { return n == "VDD_IN" || n == "POM_5V_IN"; }
+
 bool rail_name(std::string_view s) {
     if (s.size() < 4) return false;
     for (char c : s)
@@ -69,8 +73,12 @@ PowerTrace parse_tegrastats(std::string_view input, const std::string& name, con
         double mw = 0;
         std::string used;
         if (rail == "sum") {
-            for (const auto& [n, v] : rails) mw += v;
-            used = "sum of all rails";
+            std::string names, left_out;
+            for (const auto& [n, v] : rails) {
+                if (input_rail(n)) { left_out += (left_out.empty() ? "" : ", ") + n; continue; }
+                mw += v, names += (names.empty() ? "" : "+") + n;
+            }
+            used = left_out.empty() ? "sum of all rails" : "sum of rails " + names + " (input rail " + left_out + " left out: it holds them)";
         } else if (!rail.empty()) {
             const auto it = rails.find(rail);
             if (it == rails.end()) text::fail(name, l.number, "rail '" + rail + "' is not on this line");
@@ -155,6 +163,93 @@ PowerTrace parse_tegrastats(std::string_view input, const std::string& name, con
                       crowded ? "; stamps with more lines than fit are spread evenly over their second" : "");
         b.note(buf);
     }
+    return b.finish();
+}
+
+// jetson-stats (jtop) CSV: csv.DictWriter over jtop's `stats`, a header "time,uptime,CPU1,...,
+// Power <RAIL>,...,Power TOT,jetson_clocks,nvp model", power in mW, time a zone-less local
+// datetime. rail=NAME picks a rail, rail=sum the rails outside the input rail; default Power TOT.
+bool looks_like_jtop(std::string_view input) {
+    const auto nl = input.find('\n');
+    const std::string head = text::lower(input.substr(0, nl == std::string_view::npos ? std::min<std::size_t>(input.size(), 4096) : nl));
+    return text::starts_with(head, "time,") && head.find(",uptime,") != std::string::npos && head.find(",power ") != std::string::npos;
+}
+
+PowerTrace parse_jtop(std::string_view input, const std::string& name, const ParseOptions& options) {
+    const std::string parser = name + " (jtop)";
+    OptionReader o(options, parser, {"rail", "max_power_w"});
+    const auto lines = text::split_lines(input);
+    std::size_t hi = 0;
+    while (hi < lines.size() && text::trim(lines[hi].text).empty()) ++hi;
+    if (hi == lines.size()) throw Error(parser + ": empty file");
+    const auto cols = text::split_fields(lines[hi].text, ',');
+    int ct = -1;
+    std::vector<std::pair<std::string, int>> rails;  // "Power X" columns but TOT
+    int c_tot = -1;
+    for (std::size_t i = 0; i < cols.size(); ++i) {
+        if (text::lower(cols[i]) == "time") ct = static_cast<int>(i);
+        if (cols[i].rfind("Power ", 0) == 0) {
+            const std::string r = cols[i].substr(6);
+            if (r == "TOT") c_tot = static_cast<int>(i);
+            else rails.push_back({r, static_cast<int>(i)});
+        }
+    }
+    if (ct < 0) text::fail(name, lines[hi].number, "no 'time' column (a jtop CSV starts time,uptime,...)");
+    std::string list;
+    for (const auto& [r, c] : rails) list += (list.empty() ? "" : ", ") + r;
+    const std::string rail = o.text("rail", c_tot >= 0 ? "TOT" : "");
+    std::vector<int> use;
+    std::string quantity;
+    if (rail.empty()) {
+        text::fail(name, lines[hi].number, "no 'Power TOT' column: pass rail=NAME (one of " + list + ") or rail=sum (the rails outside the input rail)");
+    } else if (rail == "TOT") {
+        if (c_tot < 0) text::fail(name, lines[hi].number, "rail=TOT but the log has no 'Power TOT' column (rails: " + list + ")");
+        use.push_back(c_tot);
+        quantity = "Power TOT (jtop's total)";
+    } else if (rail == "sum") {
+        std::string names, left_out;
+        for (const auto& [r, c] : rails) {
+            if (input_rail(r)) { left_out += (left_out.empty() ? "" : ", ") + r; continue; }
+            use.push_back(c), names += (names.empty() ? "" : "+") + r;
+        }
+        if (use.empty()) text::fail(name, lines[hi].number, "rail=sum: no rails besides the input rail (" + left_out + ")");
+        quantity = "sum of rails " + names + (left_out.empty() ? "" : " (input rail " + left_out + " left out: it holds them)");
+    } else {
+        for (const auto& [r, c] : rails)
+            if (r == rail) use.push_back(c);
+        if (use.empty()) text::fail(name, lines[hi].number, "rail '" + rail + "' is not in the log (rails: " + list + (c_tot >= 0 ? ", TOT" : "") + ")");
+        quantity = "Power " + rail;
+    }
+    TraceBuilder b(name, "jtop");
+    b.power_source("soc", o);
+    b.trace().quantity = quantity + " (mW)";
+    b.trace().wall_clock = b.trace().local_time = true;
+    b.trace().resolution_w = 1e-3;
+    for (std::size_t li = hi + 1; li < lines.size(); ++li) {
+        const auto& l = lines[li];
+        if (text::trim(l.text).empty()) continue;
+        const auto f = text::split_fields(l.text, ',');
+        if (f.size() != cols.size())
+            text::fail(name, l.number, "expected " + std::to_string(cols.size()) + " fields as in the header, found " + std::to_string(f.size()));
+        bool zoned = false;
+        const auto t = text::parse_datetime(f[static_cast<std::size_t>(ct)], &zoned);
+        if (!t) text::fail(name, l.number, "time '" + f[static_cast<std::size_t>(ct)].substr(0, 40) + "' is not YYYY-MM-DD HH:MM:SS[.ffffff]");
+        if (zoned) b.trace().local_time = false;
+        double mw = 0;
+        bool ok = true;
+        for (int c : use) {
+            const auto v = text::to_number(f[static_cast<std::size_t>(c)]);
+            ok = ok && v.has_value();
+            if (v) mw += *v;
+        }
+        if (!ok) {
+            b.drop(l.number, "power field empty or not a number");
+            continue;
+        }
+        b.add(l.number, *t, mw * 1e-3);
+    }
+    b.note("jtop power in mW; rail=" + rail + (rail == "TOT" ? " (default; rail=NAME or rail=sum for others: " + list + ")" : ""));
+    if (b.trace().local_time) b.note("time stamps have no time zone (jtop writes the board's local time); taken as UTC (timezone= / utc_offset= to convert)");
     return b.finish();
 }
 

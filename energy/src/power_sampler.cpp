@@ -1,11 +1,13 @@
 #include "trn/energy/power_sampler.hpp"
 
 #include <time.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
 #include <thread>
 
+#include "pi_pmic.hpp"
 #include "trn/energy/nvml_sampler.hpp"
 #include "trn/energy/sysfs_sampler.hpp"
 #include "trn/error.hpp"
@@ -15,12 +17,14 @@ namespace trn::energy {
 std::unique_ptr<PowerSampler> make_power_sampler(const std::string& spec, const SamplerOptions& o) {
     if (spec.rfind("nvml:", 0) == 0 || spec == "nvml") return std::make_unique<NvmlSampler>(parse_nvml_spec(spec), o.nvml_library);
     if (spec.rfind("hwmon:", 0) == 0 || spec.rfind("rapl:", 0) == 0) return std::make_unique<SysfsSampler>(find_sysfs_source(spec, o.sysfs_root));
-    throw Error("power source '" + spec + "': expected hwmon:NAME[:CHANNEL], rapl:NAME or nvml:INDEX[:power|:energy]");
+    if (spec == "pmic:vcgencmd" || spec == "pmic") return pmic::make_sampler(o.vcgencmd);
+    throw Error("power source '" + spec + "': expected hwmon:NAME[:CHANNEL], rapl:NAME, nvml:INDEX[:power|:energy] or pmic:vcgencmd");
 }
 
 std::vector<std::string> list_power_sources(const SamplerOptions& o) {
     std::vector<std::string> out;
     for (const auto& s : list_sysfs_sources(o.sysfs_root)) out.push_back(s.describe());
+    if (access(o.vcgencmd.c_str(), X_OK) == 0) out.push_back("pmic:vcgencmd (" + o.vcgencmd + " pmic_read_adc: a Raspberry Pi 5's PMIC rails)");
     try {
         for (const auto& d : list_nvml_devices(o.nvml_library)) out.push_back(d);
     } catch (const Error& e) {

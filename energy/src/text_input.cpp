@@ -53,6 +53,42 @@ std::vector<std::string_view> split_ws(std::string_view s) {
     return out;
 }
 
+char detect_delimiter(std::string_view line) {
+    char best = 0;
+    std::size_t most = 0;
+    for (char c : {',', ';', '\t'}) {
+        const auto n = static_cast<std::size_t>(std::count(line.begin(), line.end(), c));
+        if (n > most) most = n, best = c;
+    }
+    return best;
+}
+
+std::vector<std::string> split_fields(std::string_view line, char delim) {
+    std::vector<std::string> out;
+    if (delim == 0) {
+        for (auto f : text::split_ws(line)) out.emplace_back(f);
+        return out;
+    }
+    std::string cur;
+    bool quoted = false;
+    for (std::size_t i = 0; i < line.size(); ++i) {
+        const char c = line[i];
+        if (quoted) {
+            if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') cur += '"', ++i;
+            else if (c == '"') quoted = false;
+            else cur += c;
+        } else if (c == '"' && text::trim(cur).empty()) {
+            cur.clear(), quoted = true;
+        } else if (c == delim) {
+            out.push_back(std::string(text::trim(cur))), cur.clear();
+        } else {
+            cur += c;
+        }
+    }
+    out.push_back(std::string(text::trim(cur)));
+    return out;
+}
+
 std::string lower(std::string_view s) {
     std::string out(s);
     std::transform(out.begin(), out.end(), out.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
@@ -120,11 +156,11 @@ std::optional<double> parse_datetime(std::string_view s, bool* zone_known) {
     if (!eat(r, "T ") || !read_int(r, 2, h) || !eat(r, ":") || !read_int(r, 2, mi) || !eat(r, ":") || !read_int(r, 2, sec))
         return std::nullopt;
     double frac = 0;
-    if (!r.empty() && r.front() == '.') {
+    if (!r.empty() && (r.front() == '.' || r.front() == ',')) {  // ',': ISO 8601's other decimal sign (date --iso-8601=ns)
         std::size_t n = 1;
         while (n < r.size() && std::isdigit(static_cast<unsigned char>(r[n]))) ++n;
         if (n == 1) return std::nullopt;
-        frac = *to_number(std::string("0") + std::string(r.substr(0, n)));
+        frac = *to_number("0." + std::string(r.substr(1, n - 1)));
         r.remove_prefix(n);
     }
     if (mo < 1 || mo > 12 || d < 1 || d > 31 || h > 23 || mi > 59 || sec > 60) return std::nullopt;

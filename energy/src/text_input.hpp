@@ -21,6 +21,12 @@ std::string_view trim(std::string_view s);
 std::vector<std::string_view> split(std::string_view s, char sep);
 std::vector<std::string_view> split_ws(std::string_view s);
 std::string lower(std::string_view s);
+// The separator of a CSV line: the one of ',', ';' and tab it holds most often (ties in that
+// order), else 0: runs of whitespace (an aligned table).
+char detect_delimiter(std::string_view line);
+// Fields of one CSV row split at `delim` (0: runs of whitespace), each trimmed; a double-quoted
+// field keeps its separators ("30,3", "Intel, Inc."), "" inside it is a quote.
+std::vector<std::string> split_fields(std::string_view line, char delim);
 bool starts_with(std::string_view s, std::string_view prefix);
 
 // A finite number, or nullopt; the whole (trimmed) field must be consumed.
@@ -29,6 +35,7 @@ std::optional<double> to_number(std::string_view field);
 double civil_to_unix(int year, int month, int day, int hour, int minute, double second);
 
 // "2026-03-18T12:09:03+05:30", "2026-03-18 12:09:03.5Z", "2024/10/30 18:42:33.189",
+// "2025-09-08T17:26:50,123456789+08:00" (date --iso-8601=ns: a comma before the fraction),
 // "10-01-2025 20:05:55" (MM-DD-YYYY, tegrastats). Returns UNIX seconds; zone-less stamps are
 // taken as UTC and *zone_known is set false.
 std::optional<double> parse_datetime(std::string_view s, bool* zone_known = nullptr);

@@ -43,12 +43,13 @@ namespace trn::energy {
 
 const std::vector<PowerSource>& power_sources() {
     static const std::vector<PowerSource> sources = {
-        {"rail", 1000, true, "an INA2xx/INA3221 rail (bidirectional shunt)"},
-        {"gpu", 2000, false, "a GPU board"},
-        {"cpu", 2000, false, "a CPU package (RAPL energy counter)"},
-        {"soc", 300, false, "a Jetson module"},
-        {"node", 20000, true, "a computer or a server node (meter, BMC)"},
-        {"rack", 500000, true, "a rack"},
+        {"rail", 1000, true, "an INA2xx/INA3221 rail (bidirectional shunt)", 0},
+        {"gpu", 2000, false, "a GPU board", 1},
+        {"cpu", 2000, false, "a CPU package (RAPL energy counter)", 0},
+        {"soc", 300, false, "a Jetson module", 0.5},
+        {"usb", 240, true, "a USB-powered device", 0},
+        {"node", 20000, true, "a computer or a server node (meter, BMC)", 0.5},
+        {"rack", 500000, true, "a rack", 50},
     };
     return sources;
 }

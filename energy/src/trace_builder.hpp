@@ -15,6 +15,40 @@
 
 namespace trn::energy {
 
+// A power unit read from a header is evidence, not truth. When every reading, in that unit, is
+// beyond what the source can draw (below its floor or above its cap) while another power unit
+// would put them all in range, the log is refused naming both readings and the option that
+// settles it ("Power (mW)" over Raspberry Pi 5 values 3.3-9.2: a computer drawing 4 mW). Only
+// for units taken from a header; a unit given as an option is the user's word and is not tested.
+inline void check_power_unit_against_source(const std::string& file, const std::string& column, double scale, const std::vector<double>& raw,
+                                            const PowerSource& src, const std::string& option) {
+    if (raw.empty()) return;
+    double lo = std::abs(raw.front()), hi = lo;
+    for (double v : raw) lo = std::min(lo, std::abs(v)), hi = std::max(hi, std::abs(v));
+    static const std::pair<const char*, double> units[] = {{"uW", 1e-6}, {"mW", 1e-3}, {"W", 1}, {"kW", 1e3}};
+    auto fits = [&](double s) { return hi * s >= src.min_w && lo * s <= src.max_w && hi * s <= src.max_w; };
+    if (fits(scale) || !(hi * scale < src.min_w || lo * scale > src.max_w)) return;
+    const char* said = "?";
+    for (const auto& [u, s] : units)
+        if (s == scale) said = u;
+    // the fitting unit nearest the header's (a slip of one prefix is the usual error)
+    const std::pair<const char*, double>* best = nullptr;
+    for (const auto& c : units)
+        if (c.second != scale && fits(c.second) && (!best || std::abs(std::log10(c.second / scale)) < std::abs(std::log10(best->second / scale))))
+            best = &c;
+    char buf[700];
+    if (best) {
+        const auto& [u, s] = *best;
+        std::snprintf(buf, sizeof buf,
+                      "%s: power column '%s' says %s, but in %s its readings (%g to %g) are %g to %g W, %s than %s %s (%s %g W); in %s they "
+                      "would be %g to %g W. Pass %s=%s if they are %s, or %s=%s to keep the header's unit (source= names another kind of device)",
+                      file.c_str(), column.c_str(), said, said, lo, hi, lo * scale, hi * scale, hi * scale < src.min_w ? "less" : "more",
+                      src.description.c_str(), hi * scale < src.min_w ? "draws" : "can draw", hi * scale < src.min_w ? "at least" : "at most",
+                      hi * scale < src.min_w ? src.min_w : src.max_w, u, lo * s, hi * s, option.c_str(), u, u, option.c_str(), said);
+        throw Error(buf);
+    }
+}
+
 class TraceBuilder {
 public:
     TraceBuilder(std::string source, std::string format) {

@@ -39,6 +39,16 @@ PowerTrace parse_nvidia_smi(std::string_view text, const std::string& name, cons
 // 5542mW/5542mW"). Options: rail (default: the input rail VDD_IN / POM_5V_IN; "sum" adds all
 // rails), interval_ms (used when lines carry no time stamp; default 1000).
 PowerTrace parse_tegrastats(std::string_view text, const std::string& name, const ParseOptions& options = {});
+// jetson-stats (jtop) CSV (csv.DictWriter over jtop's stats: time,uptime,...,Power <RAIL>,...,Power
+// TOT,...; mW; zone-less local time). Options: rail (TOT by default; a rail name; sum = the rails
+// outside the input rail, which holds them).
+PowerTrace parse_jtop(std::string_view text, const std::string& name, const ParseOptions& options = {});
+bool looks_like_jtop(std::string_view text);
+// Raspberry Pi 5 PMIC dumps (`vcgencmd pmic_read_adc`, each after a time stamp line: `date +%s.%N`
+// or an ISO stamp): power = sum of I x V over the rails with both readings. Options: interval_s
+// (dumps without time stamps placed evenly).
+PowerTrace parse_pi_pmic(std::string_view text, const std::string& name, const ParseOptions& options = {});
+bool looks_like_pi_pmic(std::string_view text);
 // PMT dumps: header "timestamp <sensor columns>", then "<t> <W>..." and `M <t> "label"` markers.
 // Options: column (default: a column named *instant*, else the first).
 PowerTrace parse_pmt(std::string_view text, const std::string& name, const ParseOptions& options = {});
@@ -67,6 +77,17 @@ PowerTrace parse_powerjoular(std::string_view text, const std::string& name, con
 // trnkit's own log (written by the sysfs sampler and the INA219 simulator's decode):
 // "# trnkit-power v1 kind=instant|interval-mean ..." then t_s,power_w lines.
 PowerTrace parse_trnkit_power(std::string_view text, const std::string& name, const ParseOptions& options = {});
+
+// Scaphandre JSON (`scaphandre json -f FILE`): JSON Lines or one array of measurement steps,
+// microwatts. Options: part (host, socket:N or socket:N:DOMAIN; default host).
+PowerTrace parse_scaphandre(std::string_view text, const std::string& name, const ParseOptions& options = {});
+// Recognition helpers for `auto`: a JSON document (first non-blank character '{' or '['), and
+// Scaphandre's among them.
+bool looks_like_json(std::string_view text);
+bool looks_like_scaphandre(std::string_view text);
+// CodeCarbon emissions.csv: per-run summaries, not a trace; always refused here, naming
+// `trnkit energy runs` (parse_codecarbon_runs in run_summaries.hpp reads the runs).
+[[noreturn]] PowerTrace parse_codecarbon(std::string_view text, const std::string& name, const ParseOptions& options = {});
 
 // Every format above by name; "auto" recognises a format from the text or refuses, saying why.
 std::vector<std::string> power_log_formats();

@@ -4,6 +4,7 @@
 //   hwmon:NAME[:CHANNEL]   ina2xx / ina3221 under SYSFS_ROOT/class/hwmon   (sysfs_sampler.hpp)
 //   rapl:NAME              powercap energy_uj under SYSFS_ROOT/class/powercap (sysfs_sampler.hpp)
 //   nvml:INDEX[:power|:energy]  NVIDIA board power / total energy counter (nvml_sampler.hpp)
+//   pmic:vcgencmd          Raspberry Pi 5 PMIC: `VCGENCMD pmic_read_adc` per poll, sum of rails I x V
 // Paths are options passed by value (the library reads no environment), so tests point them at a
 // fake sysfs tree and a fake NVML library.
 #include <memory>
@@ -19,6 +20,7 @@ namespace trn::energy {
 struct SamplerOptions {
     std::string sysfs_root = "/sys";
     std::string nvml_library = "libnvidia-ml.so.1";  // dlopen()ed at run time: no build dependency
+    std::string vcgencmd = "/usr/bin/vcgencmd";       // pmic:vcgencmd runs it (absolute path, empty environment)
 };
 
 class PowerSampler {

@@ -17,10 +17,14 @@ namespace trn::energy {
 // Jetson rail) refuses a negative reading (file:line); one that can (a bidirectional INA shunt, an
 // unknown meter) keeps it with a warning. power_sources() lists them.
 struct PowerSource {
-    std::string name;         // rail, gpu, cpu, soc, node, rack
+    std::string name;         // rail, gpu, cpu, soc, usb, node, rack
     double max_w = 0;         // plausibility cap (W)
     bool can_be_negative = false;
     std::string description;  // "an INA2xx/INA3221 rail", ...
+    // The least a working device of this kind draws (W; 0: no floor). Used to test a unit read
+    // from a header: a whole log below it while another unit would fit is refused as a unit error
+    // ("Power (mW)" over values that are watts: a computer drawing 4 mW).
+    double min_w = 0;
 };
 const std::vector<PowerSource>& power_sources();
 // Throws trn::Error naming the known sources for an unknown name.
