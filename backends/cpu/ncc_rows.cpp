@@ -27,8 +27,10 @@ RowSums sample_row(const MapPixels& m, const RowInput& row) {
         }
         const int x0 = std::min(int(px), x0max), y0 = std::min(int(py), y0max);  // px >= 0: int() == floor
         if constexpr (Checked)
-            if (m.cell_mask)  // a cell holding no-data leaves the sample out
-                valid &= (m.cell_mask[std::ptrdiff_t(y0) * m.mask_words_per_row + (x0 >> 5)] >> (x0 & 31)) & 1u;
+            if (m.cell_bits) {  // a cell holding no-data leaves the sample out
+                const std::ptrdiff_t bit = std::ptrdiff_t(y0) * (m.width - 1) + x0;
+                valid &= (m.cell_bits[bit >> 5] >> (bit & 31)) & 1u;
+            }
         const float fx = px - float(x0), fy = py - float(y0);
         const std::uint8_t* p = m.pairs + std::ptrdiff_t(y0) * m.pair_stride + 2 * std::ptrdiff_t(x0);  // m00 m01 m10 m11
         const std::int64_t j = valid * fixed::bilinear(p[0], p[2], p[1], p[3], fixed::weight(fx), fixed::weight(fy));
@@ -50,19 +52,60 @@ RowSums sample_row(const MapPixels& m, const RowInput& row) {
 RowSums sample_row_checked(const MapPixels& m, const RowInput& row) { return sample_row<true>(m, row); }
 RowSums sample_row_inside(const MapPixels& m, const RowInput& row) { return sample_row<false>(m, row); }
 
-RowSums sample_row_clipped(const MapPixels& m, const RowInput& row, bool vector) {
+RowSums sample_row_clipped(const MapPixels& m, const RowInput& row, bool vector, const TemplatePrefix& prefix, std::size_t first_sample) {
     const float xmax = float(m.width - 1), ymax = float(m.height - 1);
     auto inside = [&](int k) { return on_map(row.ax[k] + row.bdv, row.ay[k] + row.ddv, xmax, ymax); };  // the same rounded position
     int first = 0, end = row.count;
     while (first < end && !inside(first)) ++first;
     while (end > first && !inside(end - 1)) --end;
-    RowInput run = row;
-    run.ax += first, run.ay += first, run.t += first, run.count = end - first;
     RowSums r;
-    if (run.count == 0) return r;
-    r = vector ? sample_row_inside_avx2(m, run) : sample_row_inside(m, run);
-    r.n = run.count;
-    for (int k = 0; k < run.count; ++k) r.st += run.t[k], r.stt += std::int64_t(run.t[k]) * run.t[k];
+    if (first == end) return r;
+    // Samples [k0, k1) of the row, all on the map, of one kind.
+    auto sample = [&](int k0, int k1, CellBlocks::Kind kind) {
+        if (kind == CellBlocks::kNoneValid || k0 == k1) return;
+        RowInput part = row;
+        part.ax += k0, part.ay += k0, part.t += k0, part.count = k1 - k0;
+        RowSums s;
+        if (kind == CellBlocks::kSome) {
+            s = vector ? sample_row_on_map_avx2(m, part) : sample_row_checked(m, part);
+        } else {
+            s = vector ? sample_row_inside_avx2(m, part) : sample_row_inside(m, part);
+            const std::size_t p0 = first_sample + std::size_t(k0), p1 = first_sample + std::size_t(k1);
+            s.n = part.count;
+            s.st = prefix.st[p1] - prefix.st[p0];
+            s.stt = prefix.stt[p1] - prefix.stt[p0];
+        }
+        r.n += s.n, r.sj += s.sj, r.sjj += s.sjj, r.sjt += s.sjt, r.st += s.st, r.stt += s.stt;
+    };
+    if (!m.cell_bits) {
+        sample(first, end, CellBlocks::kAllValid);
+        return r;
+    }
+    // The cell of sample k (on the map), as the samplers select it.
+    const int x0max = m.width - 2, y0max = m.height - 2;
+    auto cell_x = [&](int k) { return std::min(int(row.ax[k] + row.bdv), x0max); };
+    auto cell_y = [&](int k) { return std::min(int(row.ay[k] + row.ddv), y0max); };
+    // The row's run judged whole, then (some valid, some not) in pieces of kPiece; the pieces go
+    // out in order, neighbours of one kind joined.
+    auto judge = [&](int k0, int k1) {
+        const int xa = cell_x(k0), xb = cell_x(k1 - 1), ya = cell_y(k0), yb = cell_y(k1 - 1);
+        return m.blocks->judge(std::min(xa, xb), std::min(ya, yb), std::max(xa, xb), std::max(ya, yb));
+    };
+    const CellBlocks::Kind whole = judge(first, end);
+    if (whole != CellBlocks::kSome) {
+        sample(first, end, whole);
+        return r;
+    }
+    int start = first;
+    CellBlocks::Kind kind = CellBlocks::kAllValid;
+    for (int k = first; k < end; k += kPiece) {
+        const CellBlocks::Kind piece = judge(k, std::min(k + kPiece, end));
+        if (piece != kind) {
+            sample(start, k, kind);
+            start = k, kind = piece;
+        }
+    }
+    sample(start, end, kind);
     return r;
 }
 

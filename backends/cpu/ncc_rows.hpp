@@ -5,8 +5,36 @@
 // sums are the exact integers of fixed_point.hpp.
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 namespace trn::cpu {
+
+// The no-data by blocks of 8x8 cells, to judge a rectangle of cells with four lookups: how many of
+// its blocks are not all valid, and how many hold a valid cell. Summed-area tables (entry
+// (by, bx) of a table of (blocks_y + 1) x (blocks_x + 1): the count over the blocks above and to
+// the left) in uint16, wrapping: the difference of four entries is exact for a rectangle of fewer
+// than 2^16 blocks, and larger ones are judged "some valid" (the checked sampler, always right).
+struct CellBlocks {
+    static constexpr int kShift = 3;
+    enum Kind { kAllValid, kNoneValid, kSome };
+    struct Entry {
+        std::uint16_t not_full;    // blocks with an invalid cell
+        std::uint16_t with_valid;  // blocks with a valid cell
+    };
+    int blocks_x = 0, blocks_y = 0;
+    std::vector<Entry> table;  // (blocks_y + 1) x (blocks_x + 1)
+
+    // Cells x0..x1, y0..y1 (inclusive, on the map): all valid, none valid, or some.
+    Kind judge(int x0, int y0, int x1, int y1) const {
+        const std::size_t bx0 = x0 >> kShift, by0 = y0 >> kShift, bx1 = (x1 >> kShift) + 1, by1 = (y1 >> kShift) + 1;
+        if ((bx1 - bx0) * (by1 - by0) >= 65536) return kSome;
+        const std::size_t w = std::size_t(blocks_x) + 1;
+        const Entry a = table[by1 * w + bx1], b = table[by0 * w + bx1], c = table[by1 * w + bx0], d = table[by0 * w + bx0];
+        if (std::uint16_t(a.not_full - b.not_full - c.not_full + d.not_full) == 0) return kAllValid;
+        if (std::uint16_t(a.with_valid - b.with_valid - c.with_valid + d.with_valid) == 0) return kNoneValid;
+        return kSome;
+    }
+};
 
 // Exact integer sums of one row. The "inside" samplers leave n, st and stt at 0: every sample is
 // valid there, so the caller takes them from the template (per-plan totals).
@@ -21,9 +49,12 @@ struct MapPixels {
     const std::uint8_t* pairs;     // (height - 1) rows of 2 * width bytes, >= 4 spare bytes after them
     std::ptrdiff_t pair_stride;    // bytes from one pair row to the next (2 * width)
     int width, height;
-    // No-data (trn/impl/cell_mask.hpp's words), or nullptr: only the checked sampler reads it.
-    const std::uint32_t* cell_mask = nullptr;
-    std::ptrdiff_t mask_words_per_row = 0;
+    // No-data, or nullptr: one bit per cell as in trn/impl/cell_mask.hpp, but rows packed without
+    // padding, so cell (x, y) is bit y * (width - 1) + x = (y * width + x) - y: the checked
+    // samplers get its index from the pixel pair's, with one subtraction. At least one spare word
+    // after the last. Only the checked samplers read it.
+    const std::uint32_t* cell_bits = nullptr;
+    const CellBlocks* blocks = nullptr;  // with cell_bits
 };
 
 // One row of samples. Dense rows share one (bdv, ddv); sparse chunks give one per sample.
@@ -47,16 +78,35 @@ struct RowInput {
 RowSums sample_row_checked(const MapPixels& m, const RowInput& row);
 RowSums sample_row_inside(const MapPixels& m, const RowInput& row);
 
-// A dense row (one bdv, ddv) of a patch that is not all inside, on a map without no-data: the
-// samples inside the map form one run, since px and py are monotonic along a row (each is one
-// rounded affine step of the row's du), so only that run is sampled, by the inside sampler (AVX2
-// when `vector`); the others would add nothing. The same sums as sample_row_checked, n, st, stt included.
-RowSums sample_row_clipped(const MapPixels& m, const RowInput& row, bool vector);
+// Sum of T and T^2 of the samples [k0, k1) of a plan, from its prefix sums (TemplatePrefix).
+struct TemplatePrefix {
+    const std::int64_t* st;   // st[k] = sum of t[0 .. k-1]; k = 0 .. samples
+    const std::int64_t* stt;  // likewise t^2
+};
 
-// AVX2 version of sample_row_inside (the same integers; interpolation and products as int16
-// multiply-adds). Only call when avx2_available(); every map the API accepts (< 2^31 pixels) fits
-// its 32-bit gather indices.
+// A dense row (one bdv, ddv) of a patch that is not all inside the map or not all on valid cells:
+// the samples inside the map form one run, since px and py are monotonic along a row (each is one
+// rounded affine step of the row's du), so only that run is sampled; the others would add nothing.
+// On a map without no-data the run takes the inside sampler. On one with no-data the run is cut
+// judged by the block tables over the rectangle of cells between its first and last sample's
+// (monotonic too, so every sample's cell lies in it): on valid cells only, it takes the inside
+// sampler; on no-data only, it is skipped; else it is cut into pieces of kPiece samples judged
+// alike, the pieces of neither kind taking the checked sampler (the on-map variant),
+// neighbours of one kind in one call. AVX2 when `vector`; T sums of the
+// unchecked stretches from `prefix` (`first`: the row's first sample in the plan). The same sums as
+// sample_row_checked, n, st, stt included.
+RowSums sample_row_clipped(const MapPixels& m, const RowInput& row, bool vector, const TemplatePrefix& prefix, std::size_t first);
+inline constexpr int kPiece = 32;
+
+// AVX2 versions of sample_row_inside and sample_row_checked (the same integers; interpolation and
+// products as int16 multiply-adds; the checked one tests each sample's position and cell bit in
+// lanes and zeroes what is left out). Only call when avx2_available(); every map the API accepts
+// (< 2^31 pixels) fits their 32-bit gather indices.
 RowSums sample_row_inside_avx2(const MapPixels& m, const RowInput& row);
+RowSums sample_row_checked_avx2(const MapPixels& m, const RowInput& row);
+// sample_row_checked_avx2 for samples known to be on the map (only their cells are tested), on a
+// map with no-data.
+RowSums sample_row_on_map_avx2(const MapPixels& m, const RowInput& row);
 bool avx2_available();
 
 }  // namespace trn::cpu
