@@ -124,6 +124,7 @@ bool patch_inside(const CpuMap& m, const Affine& A, const ScoringPlan& plan) {
 // Per-thread scratch that only grows, so steady-state calls allocate nothing.
 struct Scratch {
     std::vector<float> ax, ay, bdv, ddv;
+    std::vector<cpu::Tile> tiles;  // one band's
     void reserve(std::size_t n) {
         for (auto* v : {&ax, &ay, &bdv, &ddv})
             if (v->size() < n) v->resize(n);
@@ -239,17 +240,35 @@ private:
             scratch.ay[k] = A.ty + A.c * du_[k];
         }
         if (plan.dense) {
-            // A patch over the map's edge or near no-data: each row's run of samples on the map,
-            // checked on a map with no-data.
             const cpu::TemplatePrefix prefix{prefix_st_.data(), prefix_stt_.data()};
+            const int w = plan.width;
+            // A patch near no-data: by tiles of kTileRows x kTileCols samples, each judged from
+            // its corners (cpu::judge_tile), so only tiles over the no-data's edge or the map's
+            // are tested sample by sample.
+            const bool tiled = !inside && pixels.cell_bits;
+            const int tile_cols = (w + cpu::kTileCols - 1) / cpu::kTileCols;
+            if (tiled) scratch.tiles.resize(std::size_t(tile_cols));
             for (int v = 0; v < plan.height; ++v) {
+                if (tiled && v % cpu::kTileRows == 0) {
+                    const int v1 = std::min(v + cpu::kTileRows, plan.height) - 1;
+                    const float dv0 = float(v) - plan.cy, dv1 = float(v1) - plan.cy;
+                    const float bd0 = A.b * dv0, bd1 = A.b * dv1, dd0 = A.d * dv0, dd1 = A.d * dv1;
+                    for (int i = 0; i < tile_cols; ++i) {
+                        const int u0 = i * cpu::kTileCols, u1 = std::min(u0 + cpu::kTileCols, w) - 1;
+                        const float px[4] = {scratch.ax[u0] + bd0, scratch.ax[u1] + bd0, scratch.ax[u0] + bd1, scratch.ax[u1] + bd1};
+                        const float py[4] = {scratch.ay[u0] + dd0, scratch.ay[u1] + dd0, scratch.ay[u0] + dd1, scratch.ay[u1] + dd1};
+                        scratch.tiles[i] = cpu::judge_tile(pixels, px, py);
+                    }
+                }
                 const float dv = float(v) - plan.cy;
                 const cpu::RowInput row{scratch.ax.data(), scratch.ay.data(), A.b * dv, A.d * dv, nullptr, nullptr,
-                                        plan.quantized.data() + std::size_t(v) * plan.width, plan.width};
+                                        plan.quantized.data() + std::size_t(v) * w, w};
                 if (inside)
                     add(row);
-                else
-                    accumulate(cpu::sample_row_clipped(pixels, row, use_avx2_, prefix, std::size_t(v) * plan.width));
+                else if (tiled)
+                    accumulate(cpu::sample_row_tiles(pixels, row, use_avx2_, prefix, std::size_t(v) * w, scratch.tiles.data()));
+                else  // over the map's edge: each row's run of samples on the map
+                    accumulate(cpu::sample_row_clipped(pixels, row, use_avx2_, prefix, std::size_t(v) * w));
             }
         } else {
             for (std::size_t k = 0; k < count; ++k) {

@@ -58,54 +58,65 @@ RowSums sample_row_clipped(const MapPixels& m, const RowInput& row, bool vector,
     int first = 0, end = row.count;
     while (first < end && !inside(first)) ++first;
     while (end > first && !inside(end - 1)) --end;
+    RowInput run = row;
+    run.ax += first, run.ay += first, run.t += first, run.count = end - first;
     RowSums r;
-    if (first == end) return r;
-    // Samples [k0, k1) of the row, all on the map, of one kind.
-    auto sample = [&](int k0, int k1, CellBlocks::Kind kind) {
-        if (kind == CellBlocks::kNoneValid || k0 == k1) return;
+    if (run.count == 0) return r;
+    r = vector ? sample_row_inside_avx2(m, run) : sample_row_inside(m, run);
+    const std::size_t k0 = first_sample + std::size_t(first), k1 = first_sample + std::size_t(end);
+    r.n = run.count;
+    r.st = prefix.st[k1] - prefix.st[k0];
+    r.stt = prefix.stt[k1] - prefix.stt[k0];
+    return r;
+}
+
+Tile judge_tile(const MapPixels& m, const float (&px)[4], const float (&py)[4]) {
+    const float xmax = float(m.width - 1), ymax = float(m.height - 1);
+    bool all_on = true, left = true, above = true, right = true, below = true;  // every corner on the map; off one side
+    int x_lo = m.width, y_lo = m.height, x_hi = -1, y_hi = -1;
+    for (int i = 0; i < 4; ++i) {
+        if (px[i] != px[i] || py[i] != py[i]) return Tile::kSome;  // NaN: nothing is known
+        all_on = all_on && on_map(px[i], py[i], xmax, ymax);
+        left = left && px[i] < 0.0f, above = above && py[i] < 0.0f, right = right && px[i] > xmax, below = below && py[i] > ymax;
+        // The cell as sample_row_checked selects it: position clamped to the map.
+        const int x0 = std::min(int(std::clamp(px[i], 0.0f, xmax)), m.width - 2);
+        const int y0 = std::min(int(std::clamp(py[i], 0.0f, ymax)), m.height - 2);
+        x_lo = std::min(x_lo, x0), y_lo = std::min(y_lo, y0), x_hi = std::max(x_hi, x0), y_hi = std::max(y_hi, y0);
+    }
+    if (left || above || right || below) return Tile::kNoneValid;  // the whole tile off one side of the map
+    const CellBlocks::Kind cells = m.blocks ? m.blocks->judge(x_lo, y_lo, x_hi, y_hi) : CellBlocks::kAllValid;
+    if (cells == CellBlocks::kNoneValid) return Tile::kNoneValid;
+    if (!all_on) return Tile::kSome;
+    return cells == CellBlocks::kAllValid ? Tile::kAllValid : Tile::kSomeOnMap;
+}
+
+RowSums sample_row_tiles(const MapPixels& m, const RowInput& row, bool vector, const TemplatePrefix& prefix, std::size_t first_sample,
+                         const Tile* tiles) {
+    RowSums r;
+    const int count = (row.count + kTileCols - 1) / kTileCols;
+    for (int i = 0; i < count;) {
+        int j = i + 1;
+        while (j < count && tiles[j] == tiles[i]) ++j;
+        const int k0 = i * kTileCols, k1 = std::min(j * kTileCols, row.count);
+        const Tile kind = tiles[i];
+        i = j;
+        if (kind == Tile::kNoneValid) continue;
         RowInput part = row;
         part.ax += k0, part.ay += k0, part.t += k0, part.count = k1 - k0;
         RowSums s;
-        if (kind == CellBlocks::kSome) {
-            s = vector ? sample_row_on_map_avx2(m, part) : sample_row_checked(m, part);
-        } else {
+        if (kind == Tile::kAllValid) {
             s = vector ? sample_row_inside_avx2(m, part) : sample_row_inside(m, part);
             const std::size_t p0 = first_sample + std::size_t(k0), p1 = first_sample + std::size_t(k1);
             s.n = part.count;
             s.st = prefix.st[p1] - prefix.st[p0];
             s.stt = prefix.stt[p1] - prefix.stt[p0];
+        } else if (kind == Tile::kSomeOnMap) {
+            s = vector ? sample_row_on_map_avx2(m, part) : sample_row_checked(m, part);
+        } else {
+            s = vector ? sample_row_checked_avx2(m, part) : sample_row_checked(m, part);
         }
         r.n += s.n, r.sj += s.sj, r.sjj += s.sjj, r.sjt += s.sjt, r.st += s.st, r.stt += s.stt;
-    };
-    if (!m.cell_bits) {
-        sample(first, end, CellBlocks::kAllValid);
-        return r;
     }
-    // The cell of sample k (on the map), as the samplers select it.
-    const int x0max = m.width - 2, y0max = m.height - 2;
-    auto cell_x = [&](int k) { return std::min(int(row.ax[k] + row.bdv), x0max); };
-    auto cell_y = [&](int k) { return std::min(int(row.ay[k] + row.ddv), y0max); };
-    // The row's run judged whole, then (some valid, some not) in pieces of kPiece; the pieces go
-    // out in order, neighbours of one kind joined.
-    auto judge = [&](int k0, int k1) {
-        const int xa = cell_x(k0), xb = cell_x(k1 - 1), ya = cell_y(k0), yb = cell_y(k1 - 1);
-        return m.blocks->judge(std::min(xa, xb), std::min(ya, yb), std::max(xa, xb), std::max(ya, yb));
-    };
-    const CellBlocks::Kind whole = judge(first, end);
-    if (whole != CellBlocks::kSome) {
-        sample(first, end, whole);
-        return r;
-    }
-    int start = first;
-    CellBlocks::Kind kind = CellBlocks::kAllValid;
-    for (int k = first; k < end; k += kPiece) {
-        const CellBlocks::Kind piece = judge(k, std::min(k + kPiece, end));
-        if (piece != kind) {
-            sample(start, k, kind);
-            start = k, kind = piece;
-        }
-    }
-    sample(start, end, kind);
     return r;
 }
 

@@ -84,19 +84,31 @@ struct TemplatePrefix {
     const std::int64_t* stt;  // likewise t^2
 };
 
-// A dense row (one bdv, ddv) of a patch that is not all inside the map or not all on valid cells:
-// the samples inside the map form one run, since px and py are monotonic along a row (each is one
-// rounded affine step of the row's du), so only that run is sampled; the others would add nothing.
-// On a map without no-data the run takes the inside sampler. On one with no-data the run is cut
-// judged by the block tables over the rectangle of cells between its first and last sample's
-// (monotonic too, so every sample's cell lies in it): on valid cells only, it takes the inside
-// sampler; on no-data only, it is skipped; else it is cut into pieces of kPiece samples judged
-// alike, the pieces of neither kind taking the checked sampler (the on-map variant),
-// neighbours of one kind in one call. AVX2 when `vector`; T sums of the
-// unchecked stretches from `prefix` (`first`: the row's first sample in the plan). The same sums as
-// sample_row_checked, n, st, stt included.
+// A dense row (one bdv, ddv) of a patch that is not all inside, on a map without no-data: the
+// samples inside the map form one run, since px and py are monotonic along a row (each is one
+// rounded affine step of the row's du), so only that run is sampled, by the inside sampler (AVX2
+// when `vector`); the others would add nothing. T sums from `prefix` (`first`: the row's first
+// sample in the plan). The same sums as sample_row_checked, n, st, stt included.
 RowSums sample_row_clipped(const MapPixels& m, const RowInput& row, bool vector, const TemplatePrefix& prefix, std::size_t first);
-inline constexpr int kPiece = 32;
+
+// A dense patch on a map with no-data, in tiles of kTileRows rows x kTileCols samples, each judged
+// from the positions of its four corner samples: px and py are monotonic along a row and down a
+// column (each one rounded affine step of du or dv), so every sample's position lies between the
+// corners', and its cell, clamped to the map as the samplers clamp, between the corners' cells.
+inline constexpr int kTileRows = 8, kTileCols = 32;
+enum class Tile : std::uint8_t {
+    kAllValid,   // every sample on the map and on a valid cell: the inside sampler
+    kNoneValid,  // no sample on a valid cell (or none on the map): adds nothing
+    kSomeOnMap,  // every sample on the map, the cells mixed: only the cells are tested
+    kSome,       // some samples off the map: sample_row_checked
+};
+Tile judge_tile(const MapPixels& m, const float (&px)[4], const float (&py)[4]);
+
+// One dense row of a patch through its band's tiles (`tiles`: kinds of samples [kTileCols * i,
+// kTileCols * (i + 1)), neighbours of one kind sampled in one call). The same sums as
+// sample_row_checked, n, st, stt included.
+RowSums sample_row_tiles(const MapPixels& m, const RowInput& row, bool vector, const TemplatePrefix& prefix, std::size_t first,
+                         const Tile* tiles);
 
 // AVX2 versions of sample_row_inside and sample_row_checked (the same integers; interpolation and
 // products as int16 multiply-adds; the checked one tests each sample's position and cell bit in
