@@ -92,6 +92,7 @@ Tile judge_tile(const MapPixels& m, const float (&px)[4], const float (&py)[4]) 
 
 RowSums sample_row_tiles(const MapPixels& m, const RowInput& row, bool vector, const TemplatePrefix& prefix, std::size_t first_sample,
                          const Tile* tiles) {
+    if (vector) return sample_row_tiles_avx2(m, row, prefix, first_sample, tiles);
     RowSums r;
     const int count = (row.count + kTileCols - 1) / kTileCols;
     for (int i = 0; i < count;) {

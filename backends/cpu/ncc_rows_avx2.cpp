@@ -12,6 +12,8 @@
 #if defined(__x86_64__)
 #include <immintrin.h>
 
+#include <algorithm>
+
 #include "trn/fixed_point.hpp"
 
 namespace trn::cpu {
@@ -165,7 +167,7 @@ struct Checked8 {
 // comparisons; OnMap: known, not tested) and, on a map with no-data (Masked), its cell's bit is
 // set; the position is clamped to the map first, as there, so every load stays in bounds. Tail:
 // only lanes < `rest` exist.
-template <bool Masked, bool OnMap = false>
+template <bool Masked>
 struct CheckedSampler : Sampler {
     const std::uint32_t* bits;
     __m256 zero_ps, xmax, ymax;
@@ -174,7 +176,7 @@ struct CheckedSampler : Sampler {
         : Sampler(m, r), bits(m.cell_bits), zero_ps(_mm256_setzero_ps()), xmax(_mm256_set1_ps(float(m.width - 1))),
           ymax(_mm256_set1_ps(float(m.height - 1))) {}
 
-    template <bool Tail>
+    template <bool OnMap, bool Tail>
     Checked8 at(int k, int rest = 8) const {
         const __m256i lanes = _mm256_cmpgt_epi32(_mm256_set1_epi32(rest), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
         __m256 px, py;
@@ -211,16 +213,17 @@ struct CheckedSampler : Sampler {
     }
 };
 
-template <bool Masked, bool OnMap = false>
-RowSums sample_row_checked_lanes(const MapPixels& m, const RowInput& row) {
-    const CheckedSampler<Masked, OnMap> s(m, row);
-    const __m256i low32 = _mm256_set1_epi64x(0xFFFFFFFF);
-    const __m256i zero = _mm256_setzero_si256();
-    __m256i n = zero, sj = zero, st = zero, sjj_even = zero, sjj_odd = zero, sjt_even = zero, sjt_odd = zero, stt_even = zero,
-            stt_odd = zero;
+// The sums of sample_row_checked in lanes; the inside sampler's (sj, sjj, sjt) plus n, st and stt.
+struct CheckedSums {
+    __m256i n, sj, st, sjj_even, sjj_odd, sjt_even, sjt_odd, stt_even, stt_odd;
+    std::int64_t n0 = 0, st0 = 0, stt0 = 0;  // added whole (the unchecked stretches' template sums)
+
+    CheckedSums() { n = sj = st = sjj_even = sjj_odd = sjt_even = sjt_odd = stt_even = stt_odd = _mm256_setzero_si256(); }
+
     // Two groups of 8 (any pairing of samples serves a sum): the same int16 multiply-adds as the
     // inside sampler, and T^2 likewise (a pair <= 2 * 32767^2 < 2^31).
-    auto add = [&](const Checked8& g0, const Checked8& g1) {
+    void add(const Checked8& g0, const Checked8& g1) {
+        const __m256i low32 = _mm256_set1_epi64x(0xFFFFFFFF);
         n = _mm256_sub_epi32(n, _mm256_add_epi32(g0.used, g1.used));
         sj = _mm256_add_epi32(sj, _mm256_add_epi32(g0.j, g1.j));  // <= 32640 per sample: no overflow within a row or chunk
         st = _mm256_add_epi32(st, _mm256_add_epi32(g0.t, g1.t));  // |T| <= 32767 likewise
@@ -231,25 +234,48 @@ RowSums sample_row_checked_lanes(const MapPixels& m, const RowInput& row) {
         stt_even = _mm256_add_epi64(stt_even, _mm256_and_si256(tt, low32));
         stt_odd = _mm256_add_epi64(stt_odd, _mm256_srli_epi64(tt, 32));
         add_signed64(sjt_even, sjt_odd, _mm256_madd_epi16(j16, t16));
-    };
-    const Checked8 none{zero, zero, zero};
-    int k = 0;
-    for (; k + 16 <= row.count; k += 16) add(s.template at<false>(k), s.template at<false>(k + 8));
-    if (k < row.count) {  // 1 .. 15 more
-        const int rest = row.count - k;
-        if (rest > 8)
-            add(s.template at<false>(k), s.template at<true>(k + 8, rest - 8));
-        else
-            add(s.template at<true>(k, rest), none);
     }
-    RowSums r;
-    r.n = hsum32(n);
-    r.sj = hsum32(sj);
-    r.st = hsum32(st);
-    r.sjj = hsum64(_mm256_add_epi64(sjj_even, sjj_odd));
-    r.sjt = hsum64(_mm256_add_epi64(sjt_even, sjt_odd));
-    r.stt = hsum64(_mm256_add_epi64(stt_even, stt_odd));
-    return r;
+    // 16 samples all counted (the inside sampler's step): only sj, sjj, sjt.
+    void add_inside(__m256i j0, __m256i j1, __m256i t0, __m256i t1) {
+        const __m256i low32 = _mm256_set1_epi64x(0xFFFFFFFF);
+        sj = _mm256_add_epi32(sj, _mm256_add_epi32(j0, j1));
+        const __m256i j16 = _mm256_packs_epi32(j0, j1), t16 = _mm256_packs_epi32(t0, t1);
+        const __m256i jj = _mm256_madd_epi16(j16, j16);
+        sjj_even = _mm256_add_epi64(sjj_even, _mm256_and_si256(jj, low32));
+        sjj_odd = _mm256_add_epi64(sjj_odd, _mm256_srli_epi64(jj, 32));
+        add_signed64(sjt_even, sjt_odd, _mm256_madd_epi16(j16, t16));
+    }
+    // Samples k .. end-1 (1 .. 15) of the checked kind OnMap.
+    template <bool OnMap, bool Masked>
+    void add_rest(const CheckedSampler<Masked>& s, int k, int end) {
+        const int rest = end - k;
+        if (rest > 8) {
+            add(s.template at<OnMap, false>(k), s.template at<OnMap, true>(k + 8, rest - 8));
+        } else {
+            const __m256i zero = _mm256_setzero_si256();
+            add(s.template at<OnMap, true>(k, rest), Checked8{zero, zero, zero});
+        }
+    }
+    RowSums sums() const {
+        RowSums r;
+        r.n = n0 + hsum32(n);
+        r.sj = hsum32(sj);
+        r.st = st0 + hsum32(st);
+        r.sjj = hsum64(_mm256_add_epi64(sjj_even, sjj_odd));
+        r.sjt = hsum64(_mm256_add_epi64(sjt_even, sjt_odd));
+        r.stt = stt0 + hsum64(_mm256_add_epi64(stt_even, stt_odd));
+        return r;
+    }
+};
+
+template <bool Masked, bool OnMap = false>
+RowSums sample_row_checked_lanes(const MapPixels& m, const RowInput& row) {
+    const CheckedSampler<Masked> s(m, row);
+    CheckedSums acc;
+    int k = 0;
+    for (; k + 16 <= row.count; k += 16) acc.add(s.template at<OnMap, false>(k), s.template at<OnMap, false>(k + 8));
+    if (k < row.count) acc.add_rest<OnMap>(s, k, row.count);
+    return acc.sums();
 }
 
 }  // namespace
@@ -260,11 +286,41 @@ RowSums sample_row_checked_avx2(const MapPixels& m, const RowInput& row) {
 
 RowSums sample_row_on_map_avx2(const MapPixels& m, const RowInput& row) { return sample_row_checked_lanes<true, true>(m, row); }
 
+RowSums sample_row_tiles_avx2(const MapPixels& m, const RowInput& row, const TemplatePrefix& prefix, std::size_t first, const Tile* tiles) {
+    const CheckedSampler<true> s(m, row);
+    CheckedSums acc;
+    auto load_t = [&](int k) { return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(row.t + k)); };
+    for (int k0 = 0; k0 < row.count; k0 += kTileCols) {
+        const int k1 = std::min(k0 + kTileCols, row.count);
+        int k = k0;
+        switch (tiles[k0 / kTileCols]) {
+            case Tile::kNoneValid: break;
+            case Tile::kAllValid:
+                for (; k + 16 <= k1; k += 16) acc.add_inside(s.values(k), s.values(k + 8), load_t(k), load_t(k + 8));
+                acc.n0 += k - k0, acc.st0 += prefix.st[first + k] - prefix.st[first + k0], acc.stt0 += prefix.stt[first + k] - prefix.stt[first + k0];
+                if (k < k1) acc.add_rest<true>(s, k, k1);  // the row's last 1..15: on the map, counted in lanes
+                break;
+            case Tile::kSomeOnMap:
+                for (; k + 16 <= k1; k += 16) acc.add(s.at<true, false>(k), s.at<true, false>(k + 8));
+                if (k < k1) acc.add_rest<true>(s, k, k1);
+                break;
+            case Tile::kSome:
+                for (; k + 16 <= k1; k += 16) acc.add(s.at<false, false>(k), s.at<false, false>(k + 8));
+                if (k < k1) acc.add_rest<false>(s, k, k1);
+                break;
+        }
+    }
+    return acc.sums();
+}
+
 }  // namespace trn::cpu
 #else
 namespace trn::cpu {
 RowSums sample_row_inside_avx2(const MapPixels& m, const RowInput& row) { return sample_row_inside(m, row); }
 RowSums sample_row_checked_avx2(const MapPixels& m, const RowInput& row) { return sample_row_checked(m, row); }
 RowSums sample_row_on_map_avx2(const MapPixels& m, const RowInput& row) { return sample_row_checked(m, row); }
+RowSums sample_row_tiles_avx2(const MapPixels& m, const RowInput& row, const TemplatePrefix& prefix, std::size_t first, const Tile* tiles) {
+    return sample_row_tiles(m, row, false, prefix, first, tiles);
+}
 }  // namespace trn::cpu
 #endif
