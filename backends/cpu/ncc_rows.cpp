@@ -106,15 +106,13 @@ RowSums sample_row_tiles(const MapPixels& m, const RowInput& row, bool vector, c
         part.ax += k0, part.ay += k0, part.t += k0, part.count = k1 - k0;
         RowSums s;
         if (kind == Tile::kAllValid) {
-            s = vector ? sample_row_inside_avx2(m, part) : sample_row_inside(m, part);
+            s = sample_row_inside(m, part);
             const std::size_t p0 = first_sample + std::size_t(k0), p1 = first_sample + std::size_t(k1);
             s.n = part.count;
             s.st = prefix.st[p1] - prefix.st[p0];
             s.stt = prefix.stt[p1] - prefix.stt[p0];
-        } else if (kind == Tile::kSomeOnMap) {
-            s = vector ? sample_row_on_map_avx2(m, part) : sample_row_checked(m, part);
         } else {
-            s = vector ? sample_row_checked_avx2(m, part) : sample_row_checked(m, part);
+            s = sample_row_checked(m, part);
         }
         r.n += s.n, r.sj += s.sj, r.sjj += s.sjj, r.sjt += s.sjt, r.st += s.st, r.stt += s.stt;
     }

@@ -116,9 +116,6 @@ RowSums sample_row_tiles(const MapPixels& m, const RowInput& row, bool vector, c
 // (< 2^31 pixels) fits their 32-bit gather indices.
 RowSums sample_row_inside_avx2(const MapPixels& m, const RowInput& row);
 RowSums sample_row_checked_avx2(const MapPixels& m, const RowInput& row);
-// sample_row_checked_avx2 for samples known to be on the map (only their cells are tested), on a
-// map with no-data.
-RowSums sample_row_on_map_avx2(const MapPixels& m, const RowInput& row);
 // sample_row_tiles with AVX2, in one pass over the row (one set of lane sums for all its tiles).
 RowSums sample_row_tiles_avx2(const MapPixels& m, const RowInput& row, const TemplatePrefix& prefix, std::size_t first, const Tile* tiles);
 bool avx2_available();

@@ -268,13 +268,13 @@ struct CheckedSums {
     }
 };
 
-template <bool Masked, bool OnMap = false>
+template <bool Masked>
 RowSums sample_row_checked_lanes(const MapPixels& m, const RowInput& row) {
     const CheckedSampler<Masked> s(m, row);
     CheckedSums acc;
     int k = 0;
-    for (; k + 16 <= row.count; k += 16) acc.add(s.template at<OnMap, false>(k), s.template at<OnMap, false>(k + 8));
-    if (k < row.count) acc.add_rest<OnMap>(s, k, row.count);
+    for (; k + 16 <= row.count; k += 16) acc.add(s.template at<false, false>(k), s.template at<false, false>(k + 8));
+    if (k < row.count) acc.add_rest<false>(s, k, row.count);
     return acc.sums();
 }
 
@@ -284,7 +284,6 @@ RowSums sample_row_checked_avx2(const MapPixels& m, const RowInput& row) {
     return m.cell_bits ? sample_row_checked_lanes<true>(m, row) : sample_row_checked_lanes<false>(m, row);
 }
 
-RowSums sample_row_on_map_avx2(const MapPixels& m, const RowInput& row) { return sample_row_checked_lanes<true, true>(m, row); }
 
 RowSums sample_row_tiles_avx2(const MapPixels& m, const RowInput& row, const TemplatePrefix& prefix, std::size_t first, const Tile* tiles) {
     const CheckedSampler<true> s(m, row);
@@ -318,7 +317,6 @@ RowSums sample_row_tiles_avx2(const MapPixels& m, const RowInput& row, const Tem
 namespace trn::cpu {
 RowSums sample_row_inside_avx2(const MapPixels& m, const RowInput& row) { return sample_row_inside(m, row); }
 RowSums sample_row_checked_avx2(const MapPixels& m, const RowInput& row) { return sample_row_checked(m, row); }
-RowSums sample_row_on_map_avx2(const MapPixels& m, const RowInput& row) { return sample_row_checked(m, row); }
 RowSums sample_row_tiles_avx2(const MapPixels& m, const RowInput& row, const TemplatePrefix& prefix, std::size_t first, const Tile* tiles) {
     return sample_row_tiles(m, row, false, prefix, first, tiles);
 }
