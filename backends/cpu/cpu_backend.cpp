@@ -83,13 +83,15 @@ private:
         constexpr int k = cpu::CellBlocks::kShift;
         const int bx = (mask.cells_x + (1 << k) - 1) >> k, by = (mask.cells_y + (1 << k) - 1) >> k;
         std::vector<std::uint8_t> invalid(std::size_t(bx) * by, 0), valid(std::size_t(bx) * by, 0);
-        static_assert(k == 3, "a block row is one byte of a mask word");
+        static_assert(k >= 1 && k <= 5, "a block's row of cells lies in one mask word");
+        constexpr int side = 1 << k, per_word = 32 / side;
         for (int y = 0; y < mask.cells_y; ++y)
             for (int x = 0; x < bx; ++x) {
-                const std::uint32_t bits = (mask.words[std::size_t(y) * mask.words_per_row + (x >> 2)] >> (8 * (x & 3))) & 0xFFu;
-                const int n = std::min(8, mask.cells_x - 8 * x);
+                const std::uint32_t word = mask.words[std::size_t(y) * mask.words_per_row + (x / per_word)];
+                const std::uint32_t bits = side == 32 ? word : (word >> (side * (x % per_word))) & ((1u << side) - 1u);
+                const int n = std::min(side, mask.cells_x - side * x);
                 const std::size_t b = std::size_t(y >> k) * bx + x;
-                if (bits != (1u << n) - 1u) invalid[b] = 1;
+                if (bits != (n == 32 ? 0xFFFFFFFFu : (1u << n) - 1u)) invalid[b] = 1;
                 if (bits != 0) valid[b] = 1;
             }
         blocks.blocks_x = bx, blocks.blocks_y = by;
