@@ -6,7 +6,10 @@
 // integer as fixed_point.hpp's row-first order, since nothing is rounded before the final shift.
 // Products as multiply-adds too: the values I of 16 samples packed to int16 give sum I^2 and
 // sum I*T of sample pairs in int32 lanes (each <= 2 * 32640 * 32767 < 2^31), widened to 64 bits
-// once per 16 samples. Chosen at run time.
+// once per 16 samples. The checked step (samples off the map or on no-data) tests each lane's
+// position and, with a second gather, its cell's bit, and zeroes I and T where a sample is left
+// out, so n, sum T and sum T^2 come from the same steps; sample_row_tiles_avx2 switches between
+// the two per 32-sample tile along a row. Chosen at run time.
 #include "ncc_rows.hpp"
 
 #if defined(__x86_64__)
