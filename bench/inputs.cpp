@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <map>
+#include <memory>
 #include <random>
 
 #include <opencv2/imgproc.hpp>
@@ -81,6 +83,55 @@ std::vector<Pose> poses_over_the_edge(int count, const FrameSize& templ) {
         const float a = along(rng), b = across(rng);
         const float x[] = {a * w, a * w, b, w + b}, y[] = {b, h + b, a * h, a * h};  // top, bottom, left, right
         poses[i] = {x[i % 4], y[i % 4], yaw(rng), scale(rng)};
+    }
+    return poses;
+}
+
+const MaskedMapInput* masked_map(const std::string& name, const FrameSize& templ) {
+    // Each flight: its map, its first frame, and the ground a frame spans at about 60 m above
+    // ground (2 * 60 m * tan(hfov / 2)) over the map's metres per pixel (the flights' READMEs).
+    struct Flight {
+        const char *name, *map, *frame;
+        double ground_m, m_per_px;
+    };
+    static const Flight flights[] = {{"realflight2", "realflight2/orthomosaic.png", "realflight2/frames/frame_00000.png", 82.5, 0.27},
+                                     {"realflight3", "realflight3/air/map.png", "realflight3/frames/frame_00000.png", 86.5, 0.4551}};
+    static std::map<std::string, std::unique_ptr<MaskedMapInput>> loaded;
+    const std::string key = name + "/" + templ.text();
+    if (auto it = loaded.find(key); it != loaded.end()) return it->second.get();
+    std::unique_ptr<MaskedMapInput>& slot = loaded[key];
+    const char* dir = std::getenv("TRN_SHARED_DATA");
+    for (const Flight& f : flights) {
+        if (name != f.name || !dir || !*dir) continue;
+        const std::filesystem::path map_path = std::filesystem::path(dir) / f.map, frame_path = std::filesystem::path(dir) / f.frame;
+        if (!std::filesystem::exists(map_path) || !std::filesystem::exists(frame_path)) break;
+        const GrayImage grey = load_gray(map_path.string()), valid = load_validity(map_path.string()), frame = load_gray(frame_path.string());
+        if (valid.width != grey.width) throw Error("bench: " + map_path.string() + " has no alpha (no-data)");
+        auto in = std::make_unique<MaskedMapInput>();
+        in->name = f.name;
+        in->pixels = cv::Mat(grey.height, grey.width, CV_8UC1, const_cast<std::uint8_t*>(grey.pixels.data())).clone();
+        in->valid = cv::Mat(valid.height, valid.width, CV_8UC1, const_cast<std::uint8_t*>(valid.pixels.data())).clone();
+        const cv::Mat cam(frame.height, frame.width, CV_8UC1, const_cast<std::uint8_t*>(frame.pixels.data()));
+        cv::resize(cam, in->templ, cv::Size(templ.width, templ.height), 0, 0, cv::INTER_AREA);
+        in->scale = float(f.ground_m / f.m_per_px / templ.width);
+        in->valid_share = double(cv::countNonZero(in->valid)) / double(in->valid.total());
+        in->source = std::string(f.map) + " " + std::to_string(grey.width) + "x" + std::to_string(grey.height) + ", " +
+                     std::to_string(int(std::lround(100 * in->valid_share))) + " % valid";
+        slot = std::move(in);
+        break;
+    }
+    return slot.get();
+}
+
+std::vector<Pose> poses_on_valid(const MaskedMapInput& map, int count) {
+    std::mt19937 rng(24680);
+    std::uniform_int_distribution<int> ux(0, map.valid.cols - 1), uy(0, map.valid.rows - 1);
+    std::uniform_real_distribution<float> sub(0.0f, 1.0f), yaw(-3.14159f, 3.14159f), scale(0.95f, 1.05f);
+    std::vector<Pose> poses;
+    while (int(poses.size()) < count) {
+        const int x = ux(rng), y = uy(rng);
+        if (!map.valid.at<std::uint8_t>(y, x)) continue;
+        poses.push_back({float(x) + sub(rng), float(y) + sub(rng), yaw(rng), map.scale * scale(rng)});
     }
     return poses;
 }

@@ -30,6 +30,24 @@ std::vector<Pose> poses_around_centre(int count);
 // the map's border, or spread wide at the start, has many of these.
 std::vector<Pose> poses_over_the_edge(int count, const FrameSize& templ);
 
+// A real orthomosaic with no-data (its alpha) from $TRN_SHARED_DATA, for the masked-map cases:
+// the grey map, its validity (255 valid, 0 no-data), the first real frame of that flight
+// area-downscaled to the filter's template, and the flight's map pixels per template pixel.
+struct MaskedMapInput {
+    std::string name;    // "realflight2", "realflight3"
+    cv::Mat pixels;      // CV_8UC1, continuous
+    cv::Mat valid;       // CV_8UC1, continuous
+    cv::Mat templ;       // CV_8UC1, continuous, the template size asked for
+    float scale = 1.0f;  // the flight's scale (map px per template px at about 60 m above ground)
+    double valid_share = 0;  // share of valid pixels
+    std::string source;  // "realflight2/orthomosaic.png 976x861, 54 % valid"
+};
+// nullptr when $TRN_SHARED_DATA does not hold that flight.
+const MaskedMapInput* masked_map(const std::string& name, const FrameSize& templ);
+// `count` poses of a cloud spread over the map's imagery: centres on valid pixels (uniform),
+// any yaw, scale within 5 % of the flight's; fixed seed. Patches near the no-data's edge cross it.
+std::vector<Pose> poses_on_valid(const MaskedMapInput& map, int count);
+
 // Frames for Sobel: `count` source images (random bytes) and room for their gradients, laid out
 // one after another so consecutive iterations touch different memory.
 struct SobelFrames {

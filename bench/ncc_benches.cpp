@@ -1,9 +1,12 @@
 // NCC scoring on every backend, and the OpenCV ways a user would score particles instead.
-// Names: ncc/<template WxH>/<dense|sparse10|dense-edge>/N<particles>/<dev:NAME | peer:NAME>
-// (dense-edge: the filter's case with every patch over the map's edge).
+// Names: ncc/<template WxH>/<dense|sparse10|dense-edge|dense-masked:MAP|dense-unmasked:MAP>/N<particles>/<dev:NAME | peer:NAME>
+// (dense-edge: the filter's case with every patch over the map's edge; dense-masked:realflight2:
+// the filter's case on that flight's real orthomosaic with its no-data, a cloud spread over the
+// imagery; dense-unmasked: the same map pixels, poses and frame uploaded without the no-data).
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <cstdio>
 #include <map>
 
 #include <opencv2/core.hpp>
@@ -60,6 +63,48 @@ void ncc_on_device(benchmark::State& state, DeviceEntry dev, FrameSize templ_siz
     for (const ParticleScore& s : scores) valid += s.valid();
     state.SetLabel(backend.info().device + ", " + std::to_string(plan.sample_count()) + " samples, " + std::to_string(valid) +
                    "/" + std::to_string(count) + " valid, map " + bench_map().source);
+}
+
+// A real orthomosaic on each device once, with its no-data or without it.
+const MapHandle& masked_map_on(const std::string& device, const MaskedMapInput& in, bool masked) {
+    static std::map<std::string, MapHandle> maps;
+    MapHandle& h = maps[device + "/" + in.name + (masked ? "/masked" : "/unmasked")];
+    if (!h) {
+        const GrayView pixels{in.pixels.ptr<std::uint8_t>(), in.pixels.cols, in.pixels.rows, static_cast<std::ptrdiff_t>(in.pixels.step1())};
+        const GrayView valid{in.valid.ptr<std::uint8_t>(), in.valid.cols, in.valid.rows, static_cast<std::ptrdiff_t>(in.valid.step1())};
+        h = masked ? backend_for(device).upload_map(pixels, valid) : backend_for(device).upload_map(pixels);
+    }
+    return h;
+}
+
+// The filter's case on a real orthomosaic with no-data, masked or not (the same poses and frame):
+// the ratio of the two is what the no-data costs a backend.
+void ncc_masked_map(benchmark::State& state, DeviceEntry dev, const MaskedMapInput* in, int count, bool masked) {
+    Backend& backend = backend_for(dev.name);
+    const MapHandle& map = masked_map_on(dev.name, *in, masked);
+    const ScoringPlan plan = make_scoring_plan(GrayView{in->templ.ptr<std::uint8_t>(), in->templ.cols, in->templ.rows, in->templ.cols}, {});
+    const std::vector<Pose> poses = poses_on_valid(*in, count);
+    std::vector<ParticleScore> scores(poses.size());
+    PhaseTimes t;
+    if (first_time("ncc/" + dev.name + "/" + in->name + (masked ? "/masked/" : "/unmasked/") + std::to_string(count)))
+        backend.score(map, plan, poses, scores, &t);
+    const bool device_clock = has_device_clock(dev.family);
+    IterationLog log(state);
+    for (auto _ : state) {
+        const auto t0 = Clock::now();
+        backend.score(map, plan, poses, scores, &t);
+        log.add(seconds_since(t0), t, device_clock);
+    }
+    benchmark::DoNotOptimize(scores.data());
+    log.finish(0, count, "particles/s", 1, double(count) * plan.sample_count());
+    int valid = 0;
+    double samples = 0;
+    for (const ParticleScore& s : scores) valid += s.valid(), samples += s.valid_samples;
+    char share[32];
+    std::snprintf(share, sizeof share, "%.2f", 100.0 * samples / (double(count) * plan.sample_count()));
+    state.SetLabel(backend.info().device + ", " + std::to_string(plan.sample_count()) + " samples, " + std::to_string(valid) + "/" +
+                   std::to_string(count) + " valid, " + share + " % of samples used, map " + in->source + (masked ? ", no-data masked" : ", no-data not masked") +
+                   ", scale " + std::to_string(in->scale));
 }
 
 // Inverse affine (template pixel -> source pixel) of a pose, for cv::warpAffine(WARP_INVERSE_MAP),
@@ -196,6 +241,20 @@ void register_ncc_benchmarks(const Sweep& sweep) {
         if (dev.family != "cpu-ref")
             benchmark::RegisterBenchmark((edge + "/dev:" + dev.name).c_str(), ncc_on_device, dev, fs, false, sweep.ncc_filter_count, true)
                 ->UseManualTime()->Unit(benchmark::kMillisecond);
+    // The same case on the real orthomosaics with no-data (when $TRN_SHARED_DATA has them), each
+    // with its no-data masked and, beside it, without: how much the mask costs each backend.
+    for (const char* name : {"realflight2", "realflight3"}) {
+        const MaskedMapInput* in = masked_map(name, fs);
+        if (!in) continue;
+        for (bool masked : {true, false}) {
+            const std::string case_prefix = "ncc/" + fs.text() + (masked ? "/dense-masked:" : "/dense-unmasked:") + name + "/N" +
+                                            std::to_string(sweep.ncc_filter_count);
+            for (const DeviceEntry& dev : bench_devices())
+                if (dev.family != "cpu-ref")
+                    benchmark::RegisterBenchmark((case_prefix + "/dev:" + dev.name).c_str(), ncc_masked_map, dev, in, sweep.ncc_filter_count, masked)
+                        ->UseManualTime()->Unit(benchmark::kMillisecond);
+        }
+    }
 }
 
 }  // namespace trn::bench

@@ -42,38 +42,68 @@ public:
             for (int x = 0; x < v.width; ++x) out[2 * x] = top[x], out[2 * x + 1] = bottom[x];
         }
         if (no_data) {
-            mask = *no_data;
-            mark_full_tiles();
+            pack_cell_bits(*no_data);
+            make_blocks(*no_data);
         }
     }
     cpu::MapPixels view() const {
-        return {pairs.data(), pair_stride, width(), height(), masked() ? mask.words.data() : nullptr, mask.words_per_row};
+        return {pairs.data(), pair_stride, width(), height(), masked() ? cell_bits.data() : nullptr, masked() ? &blocks : nullptr};
     }
     // True when every cell in columns [x_lo, x_hi] and rows [y_lo, y_hi] (clamped to the map) is
-    // valid, judged by 32x32-cell tiles: a particle there takes the unchecked (fast) samplers.
+    // valid, judged by blocks of 8x8 cells: a particle there takes the unchecked (fast) samplers.
     bool cells_valid(int x_lo, int y_lo, int x_hi, int y_hi) const {
         if (!masked()) return true;
-        const int tx0 = std::max(x_lo, 0) >> 5, tx1 = std::min(x_hi, mask.cells_x - 1) >> 5;
-        const int ty0 = std::max(y_lo, 0) >> 5, ty1 = std::min(y_hi, mask.cells_y - 1) >> 5;
-        for (int ty = ty0; ty <= ty1; ++ty)
-            for (int tx = tx0; tx <= tx1; ++tx)
-                if (!full_tile[std::size_t(ty) * mask.words_per_row + tx]) return false;
-        return true;
+        return blocks.judge(std::max(x_lo, 0), std::max(y_lo, 0), std::min(x_hi, width() - 2), std::min(y_hi, height() - 2)) ==
+               cpu::CellBlocks::kAllValid;
     }
     std::ptrdiff_t pair_stride;
     std::vector<std::uint8_t> pairs;
-    CellMask mask;                       // no-data, when masked()
-    std::vector<std::uint8_t> full_tile;  // per 32x32 cells (a mask word wide): all valid
+    // No-data, when masked(): cpu::MapPixels::cell_bits (the cell mask's bits with the rows packed
+    // end to end, plus spare words), no larger than the CellMask that upload_map's check counts,
+    // and the block tables (4 bytes per 64 cells, 1/16 byte per pixel, not counted by map_bytes).
+    std::vector<std::uint32_t> cell_bits;
+    cpu::CellBlocks blocks;
 
 private:
-    void mark_full_tiles() {
-        const int tiles_y = (mask.cells_y + 31) / 32, wpr = mask.words_per_row;
-        full_tile.assign(std::size_t(tiles_y) * wpr, 1);
+    void pack_cell_bits(const CellMask& mask) {
+        const std::size_t cells = std::size_t(mask.cells_x) * std::size_t(mask.cells_y);
+        cell_bits.assign(cells / 32 + 2, 0u);
+        std::size_t bit = 0;  // a word at a time; CellMask's bits past cells_x are 0
         for (int y = 0; y < mask.cells_y; ++y)
-            for (int tx = 0; tx < wpr; ++tx) {
-                const int bits = std::min(32, mask.cells_x - 32 * tx);
-                const std::uint32_t all = bits == 32 ? 0xFFFFFFFFu : (1u << bits) - 1u;
-                if (mask.words[std::size_t(y) * wpr + tx] != all) full_tile[std::size_t(y / 32) * wpr + tx] = 0;
+            for (int w = 0; w < mask.words_per_row; ++w) {
+                const std::uint32_t word = mask.words[std::size_t(y) * mask.words_per_row + w];
+                const unsigned shift = bit & 31;
+                cell_bits[bit >> 5] |= word << shift;
+                if (shift) cell_bits[(bit >> 5) + 1] |= word >> (32 - shift);
+                bit += std::size_t(std::min(32, mask.cells_x - 32 * w));
+            }
+    }
+    // Which 8x8-cell blocks hold an invalid and which a valid cell, as summed-area tables.
+    void make_blocks(const CellMask& mask) {
+        constexpr int k = cpu::CellBlocks::kShift;
+        const int bx = (mask.cells_x + (1 << k) - 1) >> k, by = (mask.cells_y + (1 << k) - 1) >> k;
+        std::vector<std::uint8_t> invalid(std::size_t(bx) * by, 0), valid(std::size_t(bx) * by, 0);
+        static_assert(k >= 1 && k <= 5, "a block's row of cells lies in one mask word");
+        constexpr int side = 1 << k, per_word = 32 / side;
+        for (int y = 0; y < mask.cells_y; ++y)
+            for (int x = 0; x < bx; ++x) {
+                const std::uint32_t word = mask.words[std::size_t(y) * mask.words_per_row + (x / per_word)];
+                const std::uint32_t bits = side == 32 ? word : (word >> (side * (x % per_word))) & ((1u << side) - 1u);
+                const int n = std::min(side, mask.cells_x - side * x);
+                const std::size_t b = std::size_t(y >> k) * bx + x;
+                if (bits != (n == 32 ? 0xFFFFFFFFu : (1u << n) - 1u)) invalid[b] = 1;
+                if (bits != 0) valid[b] = 1;
+            }
+        blocks.blocks_x = bx, blocks.blocks_y = by;
+        const std::size_t w = std::size_t(bx) + 1;
+        blocks.table.assign(w * (by + 1), {0, 0});
+        for (int y = 0; y < by; ++y)
+            for (int x = 0; x < bx; ++x) {
+                const std::size_t b = std::size_t(y) * bx + x, at = (y + 1) * w + (x + 1);
+                const auto &left = blocks.table[at - 1], &up = blocks.table[at - w], &corner = blocks.table[at - w - 1];
+                // Wrapping uint16 sums: the differences judge() takes are exact below 2^16 blocks.
+                blocks.table[at] = {std::uint16_t(invalid[b] + left.not_full + up.not_full - corner.not_full),
+                                    std::uint16_t(valid[b] + left.with_valid + up.with_valid - corner.with_valid)};
             }
     }
 };
@@ -96,6 +126,7 @@ bool patch_inside(const CpuMap& m, const Affine& A, const ScoringPlan& plan) {
 // Per-thread scratch that only grows, so steady-state calls allocate nothing.
 struct Scratch {
     std::vector<float> ax, ay, bdv, ddv;
+    std::vector<cpu::Tile> tiles;  // one band's
     void reserve(std::size_t n) {
         for (auto* v : {&ax, &ay, &bdv, &ddv})
             if (v->size() < n) v->resize(n);
@@ -147,10 +178,18 @@ protected:
     void do_sobel(GrayView src, Int16View gx, Int16View gy, PhaseTimes* times) override;
 
 private:
-    // Sum of T and T^2 over every sample, taken by particles whose samples are all inside the map.
+    // Sum of T and T^2 over every sample, taken by particles whose samples are all inside the map,
+    // and their prefix sums, for runs of a row (sample_row_clipped).
     void prepare_template_totals(const ScoringPlan& plan) {
+        prefix_st_.resize(plan.quantized.size() + 1);
+        prefix_stt_.resize(plan.quantized.size() + 1);
         st_ = 0, stt_ = 0;
-        for (const std::int32_t t : plan.quantized) st_ += t, stt_ += std::int64_t(t) * t;
+        for (std::size_t k = 0; k < plan.quantized.size(); ++k) {
+            prefix_st_[k] = st_, prefix_stt_[k] = stt_;
+            const std::int64_t t = plan.quantized[k];
+            st_ += t, stt_ += t * t;
+        }
+        prefix_st_.back() = st_, prefix_stt_.back() = stt_;
     }
 
     // du (and for sparse plans dv) per sample, cached across calls with the same template geometry
@@ -175,20 +214,19 @@ private:
         ParticleSums sums;
         const cpu::MapPixels pixels = map.view();
         const bool inside = patch_inside(map, A, plan);
-        const bool vector = inside && use_avx2_;
         if (inside) sums.n = static_cast<std::int64_t>(plan.sample_count()), sums.st = st_, sums.stt = stt_;
         auto accumulate = [&](const cpu::RowSums& r) {
             sums.n += r.n, sums.sj += r.sj, sums.sjj += r.sjj, sums.sjt += r.sjt, sums.st += r.st, sums.stt += r.stt;
         };
+        // Inside: every sample on the map and on a valid cell; else each is tested (AVX2: in lanes).
         auto add = [&](const cpu::RowInput& row) {
-            accumulate(vector   ? cpu::sample_row_inside_avx2(pixels, row)
-                       : inside ? cpu::sample_row_inside(pixels, row)
-                                : cpu::sample_row_checked(pixels, row));
+            accumulate(use_avx2_ ? (inside ? cpu::sample_row_inside_avx2(pixels, row) : cpu::sample_row_checked_avx2(pixels, row))
+                                 : (inside ? cpu::sample_row_inside(pixels, row) : cpu::sample_row_checked(pixels, row)));
         };
         const std::size_t count = du_.size();
         constexpr int kChunk = 512;  // sparse: samples per call of the row sampler
         const int total = static_cast<int>(count);
-        if (!plan.dense && vector) {  // positions computed in registers, nothing precomputed
+        if (!plan.dense && use_avx2_) {  // positions computed in registers, nothing precomputed
             for (int k = 0; k < total; k += kChunk) {
                 cpu::RowInput row{nullptr, nullptr, 0, 0, nullptr, nullptr, plan.quantized.data() + k, std::min(kChunk, total - k)};
                 row.du = du_.data() + k, row.dv = dv_.data() + k;
@@ -204,16 +242,35 @@ private:
             scratch.ay[k] = A.ty + A.c * du_[k];
         }
         if (plan.dense) {
-            // A patch over the map's edge: each row's run of samples inside takes the fast sampler.
-            const bool clip = !inside && !pixels.cell_mask;
+            const cpu::TemplatePrefix prefix{prefix_st_.data(), prefix_stt_.data()};
+            const int w = plan.width;
+            // A patch near no-data: by tiles of kTileRows x kTileCols samples, each judged from
+            // its corners (cpu::judge_tile), so only tiles over the no-data's edge or the map's
+            // are tested sample by sample.
+            const bool tiled = !inside && pixels.cell_bits;
+            const int tile_cols = (w + cpu::kTileCols - 1) / cpu::kTileCols;
+            if (tiled) scratch.tiles.resize(std::size_t(tile_cols));
             for (int v = 0; v < plan.height; ++v) {
+                if (tiled && v % cpu::kTileRows == 0) {
+                    const int v1 = std::min(v + cpu::kTileRows, plan.height) - 1;
+                    const float dv0 = float(v) - plan.cy, dv1 = float(v1) - plan.cy;
+                    const float bd0 = A.b * dv0, bd1 = A.b * dv1, dd0 = A.d * dv0, dd1 = A.d * dv1;
+                    for (int i = 0; i < tile_cols; ++i) {
+                        const int u0 = i * cpu::kTileCols, u1 = std::min(u0 + cpu::kTileCols, w) - 1;
+                        const float px[4] = {scratch.ax[u0] + bd0, scratch.ax[u1] + bd0, scratch.ax[u0] + bd1, scratch.ax[u1] + bd1};
+                        const float py[4] = {scratch.ay[u0] + dd0, scratch.ay[u1] + dd0, scratch.ay[u0] + dd1, scratch.ay[u1] + dd1};
+                        scratch.tiles[i] = cpu::judge_tile(pixels, px, py);
+                    }
+                }
                 const float dv = float(v) - plan.cy;
                 const cpu::RowInput row{scratch.ax.data(), scratch.ay.data(), A.b * dv, A.d * dv, nullptr, nullptr,
-                                        plan.quantized.data() + std::size_t(v) * plan.width, plan.width};
-                if (clip)
-                    accumulate(cpu::sample_row_clipped(pixels, row, use_avx2_));
-                else
+                                        plan.quantized.data() + std::size_t(v) * w, w};
+                if (inside)
                     add(row);
+                else if (tiled)
+                    accumulate(cpu::sample_row_tiles(pixels, row, use_avx2_, prefix, std::size_t(v) * w, scratch.tiles.data()));
+                else  // over the map's edge: each row's run of samples on the map
+                    accumulate(cpu::sample_row_clipped(pixels, row, use_avx2_, prefix, std::size_t(v) * w));
             }
         } else {
             for (std::size_t k = 0; k < count; ++k) {
@@ -232,6 +289,7 @@ private:
     cpu::ThreadPool pool_;
     std::vector<float> du_, dv_;
     std::int64_t st_ = 0, stt_ = 0;
+    std::vector<std::int64_t> prefix_st_, prefix_stt_;
 };
 
 // Interior pixels of one output row from three source rows; restrict lets the compiler vectorize

@@ -159,6 +159,40 @@ void masked_rule(Backend& dut, Backend&) {
     EXPECT_GT(partly, 10) << "too few poses partly over no-data to test the rule";
 }
 
+// The cpu backend cuts a patch near no-data into tiles of 8 rows x 32 samples judged from their
+// corners, and samples rows in 16-sample steps with a masked last step: templates of widths and
+// heights around those sizes, on no-data that is fine-grained (stripes, a checkerboard of 8x8 and
+// 5x5 squares, single pixels, a hole) and coarse, poses of any yaw and scale over the map's edges,
+// plus axis-aligned poses on whole pixels up to the last column and row (weights 0, px = W-1).
+void masked_tiles(Backend& dut, Backend& ref) {
+    const int mw = 181, mh = 143;
+    const PaddedGray map = textured_image(mw, mh, 23);
+    PaddedGray valid{mw, mh, 0, std::vector<std::uint8_t>(std::size_t(mw) * mh, 255)};
+    cv::Mat v = valid.mat();
+    for (int y = 0; y < 60; ++y)
+        for (int x = 0; x < 90; ++x)
+            if (((x / 8) + (y / 8)) % 2 == 0 && x < 48) v.at<std::uint8_t>(y, x) = 0;  // 8x8 checkerboard
+            else if (x >= 48 && ((x / 5) + (y / 5)) % 2 == 0) v.at<std::uint8_t>(y, x) = 0;  // 5x5 checkerboard
+    cv::rectangle(v, cv::Rect(100, 0, 3, mh), cv::Scalar(0), cv::FILLED);  // a stripe
+    cv::circle(v, {140, 100}, 25, cv::Scalar(0), cv::FILLED);
+    for (int k = 0; k < 30; ++k) v.at<std::uint8_t>(70 + (k * 7) % 70, 5 + (k * 13) % 90) = 0;
+    std::mt19937 rng(23);
+    auto poses = random_poses(rng, 60, mw, mh, 0.1f, 0.4f, 2.5f);
+    for (float yaw : {0.0f, std::numbers::pi_v<float> / 2})
+        for (float y : {20.0f, 71.0f, float(mh - 5)})
+            for (float x : {10.0f, 95.0f, float(mw - 5)}) poses.push_back({x, y, yaw, 1.0f});
+    for (const cv::Size ts : {cv::Size(2, 2), cv::Size(7, 9), cv::Size(15, 8), cv::Size(16, 17), cv::Size(17, 7), cv::Size(31, 16),
+                              cv::Size(32, 8), cv::Size(33, 15), cv::Size(48, 3), cv::Size(64, 24), cv::Size(65, 9)}) {
+        const PaddedGray templ = textured_image(ts.width, ts.height, 24 + ts.width);
+        SCOPED_TRACE("template " + std::to_string(ts.width) + "x" + std::to_string(ts.height));
+        ScoreOptions o;
+        o.min_valid_fraction = 0.0;
+        score_and_compare(dut, ref, map.view(), valid.view(), templ.view(), poses, o);
+        o.sampling = Sampling::random(0.5, 3);
+        score_and_compare(dut, ref, map.view(), valid.view(), templ.view(), poses, o);
+    }
+}
+
 // The real orthomosaic of ../shared/data/realflight2 (transparent no-data) with a real frame.
 void masked_real_orthomosaic(Backend& dut, Backend& ref) {
     const char* dir = std::getenv("TRN_SHARED_DATA");
@@ -196,6 +230,7 @@ std::vector<Case> mask_cases() {
             {"mask_single_pixels", masked_single_pixels},
             {"mask_same_as_unmasked", masked_same_as_unmasked},
             {"mask_rule", masked_rule},
+            {"mask_tiles", masked_tiles},
             {"mask_real_orthomosaic", masked_real_orthomosaic},
             {"mask_errors", mask_errors}};
 }
