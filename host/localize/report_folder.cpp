@@ -44,11 +44,12 @@ void write_localization_report(const LocalizationResult& result, const std::stri
     if (compassless) {  // the heading is an output: its figures, null when unknown (no truth, never converged)
         strings["heading"] = "none (compass-less: yaw estimated, turned by the odometry's rotation)";
         for (const auto& [k, v] : heading_numbers(result.summary)) numbers[k] = v;
-        char line[240];
-        std::snprintf(line, sizeof line, "heading:      none; final yaw sd %.1f deg, mean yaw error %.1f deg; converged (yaw sd < %.0f deg and a lock fix) from frame %.0f, "
-                      "mean error since %.2f m\n",
-                      result.summary.final_yaw_sd_deg, result.summary.mean_yaw_error_deg, kConvergedYawSdDeg, result.summary.converged_from_frame,
-                      result.summary.converged_mean_error_m);
+        char line[240], since[96] = "not converged";
+        if (!std::isnan(result.summary.converged_from_frame))
+            std::snprintf(since, sizeof since, "from frame %.0f, mean error since %.2f m", result.summary.converged_from_frame,
+                          result.summary.converged_mean_error_m);
+        std::snprintf(line, sizeof line, "heading:      none; final yaw sd %.1f deg, mean yaw error %.1f deg; converged (yaw sd < %.0f deg and a lock fix): %s\n",
+                      result.summary.final_yaw_sd_deg, result.summary.mean_yaw_error_deg, kConvergedYawSdDeg, since);
         after_summary = line + after_summary;
     }
 

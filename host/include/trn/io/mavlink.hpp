@@ -98,7 +98,7 @@ struct GlobalPositionSensor {
     std::int32_t lat = 0, lon = 0;      // degE7, INT32_MAX = invalid
     float alt_ellipsoid = 0, alt = 0, eph = 0, epv = 0;  // m, NaN = invalid
 };
-inline constexpr std::uint8_t kGlobalPositionSrcVision = 2;  // "Vision system (e.g.: map matching)"
+inline constexpr std::uint8_t kGlobalPositionSrcVision = 2;  // MAVLink's "Vision" source (e.g. map matching)
 inline constexpr std::uint8_t kGlobalPositionUnhealthy = 1;
 
 struct Odometry {
