@@ -39,17 +39,13 @@ ScoreOptions options_for(bool sparse) {
     return o;
 }
 
-void ncc_on_device(benchmark::State& state, DeviceEntry dev, FrameSize templ_size, bool sparse, int count, bool over_the_edge) {
-    Backend& backend = backend_for(dev.name);
-    const MapHandle& map = map_on(dev.name);
-    const cv::Mat templ = template_from_map(templ_size);
-    const ScoringPlan plan =
-        make_scoring_plan(GrayView{templ.ptr<std::uint8_t>(), templ.cols, templ.rows, templ.cols}, options_for(sparse));
-    const std::vector<Pose> poses = over_the_edge ? poses_over_the_edge(count, templ_size) : poses_around_centre(count);
+// The timed loop of every NCC case: one untimed call first (lazy buffers sized for this batch),
+// then each iteration's wall time and the backend's phases. Returns the last scores.
+std::vector<ParticleScore> time_scoring(benchmark::State& state, const DeviceEntry& dev, Backend& backend, const MapHandle& map,
+                                        const ScoringPlan& plan, const std::vector<Pose>& poses, const std::string& case_name) {
     std::vector<ParticleScore> scores(poses.size());
     PhaseTimes t;
-    if (first_time("ncc/" + dev.name + "/" + templ_size.text() + (sparse ? "/sparse/" : over_the_edge ? "/dense-edge/" : "/dense/") + std::to_string(count)))
-        backend.score(map, plan, poses, scores, &t);  // lazy buffers sized for this batch
+    if (first_time(case_name)) backend.score(map, plan, poses, scores, &t);
     const bool device_clock = has_device_clock(dev.family);
     IterationLog log(state);
     for (auto _ : state) {
@@ -58,7 +54,21 @@ void ncc_on_device(benchmark::State& state, DeviceEntry dev, FrameSize templ_siz
         log.add(seconds_since(t0), t, device_clock);
     }
     benchmark::DoNotOptimize(scores.data());
+    const auto count = static_cast<std::int64_t>(poses.size());
     log.finish(0, count, "particles/s", 1, double(count) * plan.sample_count());
+    return scores;
+}
+
+void ncc_on_device(benchmark::State& state, DeviceEntry dev, FrameSize templ_size, bool sparse, int count, bool over_the_edge) {
+    Backend& backend = backend_for(dev.name);
+    const MapHandle& map = map_on(dev.name);
+    const cv::Mat templ = template_from_map(templ_size);
+    const ScoringPlan plan =
+        make_scoring_plan(GrayView{templ.ptr<std::uint8_t>(), templ.cols, templ.rows, templ.cols}, options_for(sparse));
+    const std::vector<Pose> poses = over_the_edge ? poses_over_the_edge(count, templ_size) : poses_around_centre(count);
+    const std::vector<ParticleScore> scores = time_scoring(
+        state, dev, backend, map, plan, poses,
+        "ncc/" + dev.name + "/" + templ_size.text() + (sparse ? "/sparse/" : over_the_edge ? "/dense-edge/" : "/dense/") + std::to_string(count));
     int valid = 0;
     for (const ParticleScore& s : scores) valid += s.valid();
     state.SetLabel(backend.info().device + ", " + std::to_string(plan.sample_count()) + " samples, " + std::to_string(valid) +
@@ -84,19 +94,8 @@ void ncc_masked_map(benchmark::State& state, DeviceEntry dev, const MaskedMapInp
     const MapHandle& map = masked_map_on(dev.name, *in, masked);
     const ScoringPlan plan = make_scoring_plan(GrayView{in->templ.ptr<std::uint8_t>(), in->templ.cols, in->templ.rows, in->templ.cols}, {});
     const std::vector<Pose> poses = poses_on_valid(*in, count);
-    std::vector<ParticleScore> scores(poses.size());
-    PhaseTimes t;
-    if (first_time("ncc/" + dev.name + "/" + in->name + (masked ? "/masked/" : "/unmasked/") + std::to_string(count)))
-        backend.score(map, plan, poses, scores, &t);
-    const bool device_clock = has_device_clock(dev.family);
-    IterationLog log(state);
-    for (auto _ : state) {
-        const auto t0 = Clock::now();
-        backend.score(map, plan, poses, scores, &t);
-        log.add(seconds_since(t0), t, device_clock);
-    }
-    benchmark::DoNotOptimize(scores.data());
-    log.finish(0, count, "particles/s", 1, double(count) * plan.sample_count());
+    const std::vector<ParticleScore> scores =
+        time_scoring(state, dev, backend, map, plan, poses, "ncc/" + dev.name + "/" + in->name + (masked ? "/masked/" : "/unmasked/") + std::to_string(count));
     int valid = 0;
     double samples = 0;
     for (const ParticleScore& s : scores) valid += s.valid(), samples += s.valid_samples;

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "text_input.hpp"
+#include "log_checks.hpp"
 #include "trn/energy/integrate.hpp"
 #include "trn/energy/parsers.hpp"
 #include "trn/error.hpp"
@@ -13,24 +14,9 @@
 namespace trn::energy {
 namespace {
 
-std::string error_of(const std::string& text, const std::string& format = "auto", const ParseOptions& o = {}) {
-    try {
-        parse_power_log(text, "x.log", format, o);
-    } catch (const trn::Error& e) {
-        return e.what();
-    }
-    return "";
-}
-
-bool mentions(const std::vector<std::string>& list, const std::string& part) {
-    for (const auto& s : list)
-        if (s.find(part) != std::string::npos) return true;
-    return false;
-}
-
-double joules(const PowerTrace& tr) {
-    return integrate_interval(tr, tr.first_interval_start.value_or(tr.t.front()), tr.t.back()).energy_j;
-}
+using test::error_of;
+using test::joules;
+using test::mentions;
 
 // 1. Decimal commas.
 TEST(ForeignLogs, DecimalCommasAreReadOrRefusedNeverTruncated) {

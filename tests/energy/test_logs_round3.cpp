@@ -12,6 +12,7 @@
 
 #include "../cli/cli_process.hpp"
 #include "pi_pmic.hpp"
+#include "log_checks.hpp"
 #include "trn/energy/integrate.hpp"
 #include "trn/energy/power_sampler.hpp"
 #include "trn/energy/parsers.hpp"
@@ -21,24 +22,9 @@
 namespace trn::energy {
 namespace {
 
-std::string error_of(const std::string& text, const std::string& format = "auto", const ParseOptions& o = {}) {
-    try {
-        parse_power_log(text, "x.log", format, o);
-    } catch (const trn::Error& e) {
-        return e.what();
-    }
-    return "";
-}
-
-bool mentions(const std::vector<std::string>& list, const std::string& part) {
-    for (const auto& s : list)
-        if (s.find(part) != std::string::npos) return true;
-    return false;
-}
-
-double joules(const PowerTrace& tr) {
-    return integrate_interval(tr, tr.first_interval_start.value_or(tr.t.front()), tr.t.back()).energy_j;
-}
+using test::error_of;
+using test::joules;
+using test::mentions;
 
 // Item 4: a header's unit is evidence, not truth.
 TEST(UnitsAgainstSource, MilliwattHeaderOverWattValuesIsRefusedNamingBothReadings) {
