@@ -43,6 +43,7 @@ void LockMonitor::reset(double x, double y, double uncertainty_m) {
     since_fix_m_ = 0;
     fix_uncertainty_m_ = uncertainty_m;
     weak_run_ = cooldown_ = candidate_run_ = 0;
+    fixed_ = false;
 }
 
 void LockMonitor::predict(double dx, double dy) {
@@ -90,6 +91,8 @@ LockReport LockMonitor::assess(double best_ncc, std::span<const ParticleScore> p
     candidate_x_ = ex, candidate_y_ = ey;
     r.fix_run = candidate_run_;
     r.confident = candidate_run_ >= config_.fix_steps;
+    if (r.confident) fixed_ = true;
+    r.fixed_before = fixed_;
     if (r.confident) {  // a fix: dead reckoning restarts here
         dead_x_ = ex, dead_y_ = ey;
         since_fix_m_ = 0;
@@ -104,6 +107,7 @@ LockReport LockMonitor::assess(double best_ncc, std::span<const ParticleScore> p
     if (candidate) return r;  // strong evidence still being confirmed: no verdict either way
     if (r.inconsistent || weak_run_ >= config_.weak_steps) {
         r.lost = true;
+        fixed_ = r.fixed_before = false;  // judged again from here
         r.widen_radius_m = std::min(config_.widen_radius_m, r.drift_bound_m);
         weak_run_ = 0;
         cooldown_ = config_.cooldown_steps;

@@ -433,7 +433,11 @@ StepReport ParticleFilter::step(const FilterInput& in) {
     update_estimate();
     r.estimate = estimate_;
     r.particles = particles_.size();
-    if (!r.frame_missing) check_lock(m, r);
+    if (!r.frame_missing) {
+        check_lock(m, r);
+        r.lock.redrawn = r.reinitialised;
+        r.lock.blind = r.frame_weight == 0;
+    }
     ++counters_.steps;
     counters_.odometry_lost += r.odometry_lost;
     counters_.frames_missing += r.frame_missing;

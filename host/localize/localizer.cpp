@@ -18,13 +18,16 @@ std::string number(double v) {
 }  // namespace
 
 // A lost step is usually also weak or inconsistent. assess() always measures the drift, so no drift
-// means the step was not assessed.
+// means the step was not assessed. "ok" needs evidence (issue 43): a fix since the start or the last
+// loss, and a contrast measured this step; a redraw is a loss; a frame that told nothing, or a map
+// too small for the probes (NaN contrast), leaves the position unjudged.
 const char* lock_state_name(const filter::LockReport& l) {
     if (std::isnan(l.drift_m)) return "none";
-    if (l.lost) return "lost";
+    if (l.lost || l.redrawn) return "lost";
     if (l.confident) return "fix";
     if (l.inconsistent) return "inconsistent";
     if (l.weak) return "weak";
+    if (l.blind || std::isnan(l.contrast) || !l.fixed_before) return "unknown";
     return "ok";
 }
 

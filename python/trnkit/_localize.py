@@ -73,7 +73,7 @@ class Localizer:
 
         Returns a dict: x, y, yaw (map pixels, radians), best_x, best_y, best_yaw, best_ncc (the
         best particle), spread_m, particles, off_map, frame_missing, too_oblique, tilt_deg (degrees),
-        odometry_lost, reinitialised, lock_state ("none", "ok", "weak", "inconsistent", "fix",
+        odometry_lost, reinitialised, lock_state ("none", "unknown", "ok", "weak", "inconsistent", "fix",
         "lost"), lock_contrast, lock_drift_m, score_ms, step_ms (milliseconds), yaw_sd (circular sd of the
         particles' yaws, radians: the heading's spread)."""
         if heading_rad is not None and abs(heading_rad) > 2 * math.pi:

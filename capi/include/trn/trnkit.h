@@ -266,7 +266,7 @@ typedef struct trn_estimate {
     size_t particles, off_map;    /* scored this step / of them without a valid score */
     int frame_missing, too_oblique, odometry_lost, reinitialised;
     double tilt_deg;              /* of the optical axis from the vertical (0 without attitude) */
-    const char* lock_state;       /* "none", "ok", "weak", "inconsistent", "fix", "lost" (static) */
+    const char* lock_state;       /* "none", "unknown", "ok", "weak", "inconsistent", "fix", "lost" (static) */
     double lock_contrast, lock_drift_m; /* the lock monitor's evidence (NaN: not assessed) */
     double score_ms, step_ms;     /* wall time of the scoring / of the whole step */
     double yaw_sd;                /* circular sd of the particles' yaws, radians (the heading's spread) */

@@ -68,6 +68,9 @@ struct LockReport {
     double fix_contrast = NAN;  // the contrast a fix at this distance from dead reckoning needs
     std::size_t fix_run = 0;    // consecutive steps that met it on one track (a fix at fix_steps)
     bool weak = false, confident = false, inconsistent = false, lost = false;  // confident: a fix
+    bool fixed_before = false;  // a fix was declared since the start (or the last loss): the position was judged
+    bool redrawn = false;       // set by the filter: the step re-initialised (every weight collapsed)
+    bool blind = false;         // set by the filter: no particle had a valid score (the frame told nothing)
     double widen_radius_m = 0;  // when lost: re-scatter within this radius of dead reckoning
 };
 
@@ -99,6 +102,7 @@ private:
     double dead_x_ = 0, dead_y_ = 0, since_fix_m_ = 0, fix_uncertainty_m_ = 0;
     double candidate_x_ = 0, candidate_y_ = 0;  // last step of the current fix candidate, moved by odometry
     std::size_t weak_run_ = 0, cooldown_ = 0, candidate_run_ = 0;
+    bool fixed_ = false;  // a fix since the start or the last loss
 };
 
 }  // namespace trn::filter

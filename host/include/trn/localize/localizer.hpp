@@ -81,7 +81,9 @@ struct Estimate {
 };
 
 // The lock monitor's verdict in one word, the strongest first: "none" (not assessed: monitor off or
-// no frame), "lost", "fix", "inconsistent", "weak", "ok".
+// no frame), "lost" (the monitor's verdict, or the filter redrew its particles), "fix",
+// "inconsistent", "weak", "unknown" (not judged: no fix yet since the start or the last loss, no
+// random place on the map to compare the best score with, or the frame told nothing), "ok".
 const char* lock_state_name(const filter::LockReport& lock);
 
 class Localizer {

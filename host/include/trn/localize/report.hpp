@@ -15,7 +15,8 @@ TRN_API_BEGIN
 namespace trn::localize {
 
 // One line per filter step. The lock monitor's columns: lock_state (none = not assessed: monitor
-// off or no frame; else the strongest of lost > fix > inconsistent > weak > ok), lock_contrast,
+// off or no frame; else the strongest of lost > fix > inconsistent > weak > unknown > ok; localizer.hpp
+// says what each needs), lock_contrast,
 // lock_drift_m and lock_drift_bound_m (empty when unknown), lock_lost_events (running count) and
 // lock_widen_radius_m (the widened search's radius on a lost step, else 0).
 // `heading_columns` (compass-less runs) appends truth_yaw_deg, estimate_yaw_deg, estimate_yaw_sd_deg
