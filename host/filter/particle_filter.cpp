@@ -160,6 +160,7 @@ StepMotion ParticleFilter::motion_from(const FilterInput& in, bool& lost) {
     double east = in.odometry_east_m, north = in.odometry_north_m;
     lost = !std::isfinite(east) || !std::isfinite(north);
     lost_run_ = lost ? lost_run_ + 1 : 0;
+    steps_since_lost_ = lost ? 0 : steps_since_lost_ + 1;
     const bool ours_lost = lost && config_.update.lost_body_velocity;
     double diffusion_m = 0;
     if (lost) {
@@ -328,12 +329,12 @@ std::size_t ParticleFilter::measure(const FilterInput& in, double& score_ms, dou
         bool partial = invalid > 0;
         for (std::size_t i = 0; i < particles_.size() && !partial; ++i) partial = scores_[i].valid() && scores_[i].valid_samples < whole;
         if (partial) {
-            log_weights_.clear();  // the valid particles' NCCs, for their quantile
+            valid_ncc_.clear();  // for their quantile
             for (std::size_t i = 0; i < particles_.size(); ++i)
-                if (scores_[i].valid()) log_weights_.push_back(scores_[i].ncc);
-            const auto rank = static_cast<std::ptrdiff_t>(std::floor(u.unknown_quantile * static_cast<double>(log_weights_.size() - 1) + 0.5));
-            const auto mid = log_weights_.begin() + rank;
-            std::nth_element(log_weights_.begin(), mid, log_weights_.end());
+                if (scores_[i].valid()) valid_ncc_.push_back(scores_[i].ncc);
+            const auto rank = static_cast<std::ptrdiff_t>(std::floor(u.unknown_quantile * static_cast<double>(valid_ncc_.size() - 1) + 0.5));
+            const auto mid = valid_ncc_.begin() + rank;
+            std::nth_element(valid_ncc_.begin(), mid, valid_ncc_.end());
             double neutral = config_.conversion(*mid);
             if (!(neutral > 0) || !std::isfinite(neutral)) neutral = 0;
             for (std::size_t i = 0; i < particles_.size(); ++i) {
@@ -395,7 +396,6 @@ StepReport ParticleFilter::step(const FilterInput& in) {
     if (!initialised_) throw Error("ParticleFilter::step: call initialise() first");
     StepReport r;
     const StepMotion m = motion_from(in, r.odometry_lost);
-    steps_since_lost_ = r.odometry_lost ? 0 : steps_since_lost_ + 1;
     r.occupied_bins = sample_and_propagate(m);
     // The step on the map: with a compass the increment is east/north already; without one it is in
     // the previous frame's axes, turned here by the estimate's yaw before the step.

@@ -2,8 +2,6 @@
 // CRC_EXTRA generated from the MAVLink XML, v2 zero-fill), run as a process on the bytes we wrote.
 // Every field it reads must be the value we encoded. SKIPPED (visibly) without node or node-mavlink
 // (scripts/install-deps.sh installs both).
-#include <sys/wait.h>
-
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -15,6 +13,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "../cli/cli_process.hpp"
 #include "trn/io/mavlink.hpp"
 #include "trn/io/mavlink_stream.hpp"
 
@@ -37,14 +36,10 @@ std::string decoder_missing() {
 std::vector<json> decode(const std::vector<std::uint8_t>& bytes) {
     const auto file = std::filesystem::temp_directory_path() / ("trn_mavlink_" + std::to_string(::getpid()) + ".bin");
     std::ofstream(file, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-    const std::string line = std::string("'") + TRN_NODE + "' '" + kDecoder + "' '" + file.string() + "'";
-    FILE* p = popen(line.c_str(), "r");
-    std::string out;
-    char buf[4096];
-    while (p && std::fgets(buf, sizeof buf, p)) out += buf;
-    const int status = p ? pclose(p) : -1;
+    const trn::test::CliResult r = trn::test::run_shell(std::string("'") + TRN_NODE + "' '" + kDecoder + "' '" + file.string() + "'");
+    const std::string& out = r.output;
     std::filesystem::remove(file);
-    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << out;
+    EXPECT_EQ(r.code, 0) << out;
     std::vector<json> lines;
     std::size_t at = 0;
     for (std::size_t nl; (nl = out.find('\n', at)) != std::string::npos; at = nl + 1) lines.push_back(json::parse(out.substr(at, nl - at)));

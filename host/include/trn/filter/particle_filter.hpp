@@ -237,7 +237,7 @@ private:
     ParticleScorer& scorer_;
     FilterConfig config_;
     std::vector<Particle> particles_, drawn_;
-    std::vector<double> cumulative_, log_weights_;
+    std::vector<double> cumulative_, log_weights_, valid_ncc_;  // scratch of sampling, tempering, the unknown weight
     std::vector<Pose> poses_;
     std::vector<ParticleScore> scores_, probe_scores_;
     Estimate estimate_;
