@@ -74,6 +74,8 @@ void MavlinkOut::step(const localize::LocalizationRow& row, const localize::Esti
         f.lat_deg = row.estimate_lat, f.lon_deg = row.estimate_lon;
         f.north_m = -(row.estimate_y - origin_y_) * mpp_, f.east_m = (row.estimate_x - origin_x_) * mpp_;  // map y points south
         f.spread_m = e.spread_m;
+        f.cov_nn = e.cov_nn_m2, f.cov_ne = e.cov_ne_m2, f.cov_ee = e.cov_ee_m2;
+        f.vel_north = e.vel_north_mps, f.vel_east = e.vel_east_mps, f.vel_var = e.vel_var_m2ps2;  // NaN without frame times
         if (compassless_) f.yaw_rad = e.yaw, f.yaw_var = e.yaw_sd * e.yaw_sd;
     }
     f.processing_us = static_cast<std::uint32_t>(std::llround(std::max(0.0, e.step_ms) * 1000));

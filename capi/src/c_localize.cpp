@@ -62,6 +62,9 @@ trn::localize::LocalizerConfig to_config(const trn_localizer_config& c) {
     }
     f.init_heading_sd_deg = c.start_heading_sd_deg;
     f.lock.enabled = c.lock_monitor != 0;
+    if (std::isnan(c.map_origin_lat_deg) != std::isnan(c.map_origin_lon_deg))
+        throw InvalidArgument("config->map_origin_lat_deg and map_origin_lon_deg go together (both NaN: no georeference)");
+    if (!std::isnan(c.map_origin_lat_deg)) l.map_origin = trn::sim::GeoOrigin{c.map_origin_lat_deg, c.map_origin_lon_deg};
     return l;
 }
 
@@ -78,6 +81,7 @@ trn::localize::Observation from_c(const trn_observation& o) {
     x.heading_rad = o.heading_rad;
     x.has_attitude = o.has_attitude != 0, x.roll_rad = o.roll_rad, x.pitch_rad = o.pitch_rad;
     x.odometry_yaw_rad = o.odometry_yaw_rad;
+    x.time_s = o.time_s;
     return x;
 }
 
@@ -89,6 +93,7 @@ trn_observation to_c(const trn::localize::Observation& o) {
     c.heading_rad = o.heading_rad;
     c.has_attitude = o.has_attitude, c.roll_rad = o.roll_rad, c.pitch_rad = o.pitch_rad;
     c.odometry_yaw_rad = o.odometry_yaw_rad;
+    c.time_s = o.time_s;
     return c;
 }
 
@@ -107,6 +112,7 @@ trn_localizer_config config_of(trn::filter::Profile profile) {
     c.start_heading_sd_deg = l.filter.init_heading_sd_deg;
     c.profile = trn::filter::to_string(profile);  // a static string
     c.lock_monitor = l.filter.lock.enabled ? 1 : 0;
+    c.map_origin_lat_deg = c.map_origin_lon_deg = NAN;
     return c;
 }
 
@@ -131,6 +137,7 @@ trn_observation trn_observation_default(void) {
     o.heading_rad = NAN;
     o.has_attitude = 0, o.roll_rad = o.pitch_rad = 0;
     o.odometry_yaw_rad = NAN;
+    o.time_s = NAN;
     return o;
 }
 
@@ -186,6 +193,10 @@ trn_status trn_localizer_step(trn_localizer* localizer, const trn_observation* o
         c.lock_contrast = e.lock.contrast, c.lock_drift_m = e.lock.drift_m;
         c.score_ms = e.score_ms, c.step_ms = e.step_ms;
         c.yaw_sd = e.yaw_sd;
+        c.cov_xx_px2 = e.cov_xx_px2, c.cov_xy_px2 = e.cov_xy_px2, c.cov_yy_px2 = e.cov_yy_px2;
+        c.cov_nn_m2 = e.cov_nn_m2, c.cov_ne_m2 = e.cov_ne_m2, c.cov_ee_m2 = e.cov_ee_m2, c.eph_m = e.eph_m;
+        c.latitude_deg = e.latitude_deg, c.longitude_deg = e.longitude_deg, c.time_s = e.time_s;
+        c.vel_north_mps = e.vel_north_mps, c.vel_east_mps = e.vel_east_mps, c.vel_var_m2ps2 = e.vel_var_m2ps2;
         *out = c;
     });
 }

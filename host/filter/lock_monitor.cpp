@@ -32,7 +32,7 @@ void LockMonitorConfig::validate() const {
 }
 
 LockMonitor::LockMonitor(const LockMonitorConfig& config, double metres_per_pixel, std::uint64_t seed)
-    : config_(config), mpp_(metres_per_pixel), rng_(splitmix::mix64(seed ^ 0x10C4ull)) {
+    : config_(config), mpp_(metres_per_pixel), rng_(splitmix::mix64(seed ^ 0x10C4ull)), near_rng_(splitmix::mix64(seed ^ 0x4EA2ull)) {
     config_.validate();
 }
 
@@ -63,6 +63,23 @@ std::size_t LockMonitor::add_probes(double x, double y, double yaw, std::vector<
     return config_.probes;
 }
 
+std::size_t LockMonitor::add_near_probes(double x, double y, double yaw, double footprint_px, int map_width, int map_height,
+                                         std::vector<Pose>& poses) {
+    if (!config_.enabled || map_width < 2 || map_height < 2 || !(footprint_px >= 0)) return 0;
+    const double r_max = config_.probe_max_m / mpp_;
+    std::size_t added = 0;
+    // Uniform over the map, kept when in the annulus: a bounded number of tries, so a map with no
+    // place far enough from the estimate gives fewer probes (or none), never a hang.
+    for (std::size_t tries = 0; tries < 50 * config_.probes && added < config_.probes; ++tries) {
+        const double px = splitmix::uniform(near_rng_) * (map_width - 1), py = splitmix::uniform(near_rng_) * (map_height - 1);
+        const double r = std::hypot(px - x, py - y);
+        if (r < footprint_px || r > r_max) continue;
+        poses.push_back({static_cast<float>(px), static_cast<float>(py), static_cast<float>(yaw), 1.0f});
+        ++added;
+    }
+    return added;
+}
+
 LockReport LockMonitor::assess(double best_ncc, std::span<const ParticleScore> probe_scores, double ex, double ey,
                                double spread_m) {
     LockReport r;
@@ -71,7 +88,7 @@ LockReport LockMonitor::assess(double best_ncc, std::span<const ParticleScore> p
     double n = 0, sum = 0, sum2 = 0;
     for (const ParticleScore& s : probe_scores)
         if (s.valid()) n += 1, sum += s.ncc, sum2 += double(s.ncc) * s.ncc;
-    if (n >= 8 && std::isfinite(best_ncc)) {  // too few probes on the map: no contrast evidence
+    if (n >= kMinProbes && std::isfinite(best_ncc)) {  // too few probes on the map: no contrast evidence
         r.probe_mean = sum / n;
         r.probe_sd = std::sqrt(std::max(sum2 / n - r.probe_mean * r.probe_mean, 1e-6));
         r.contrast = (best_ncc - r.probe_mean) / r.probe_sd;
@@ -92,6 +109,7 @@ LockReport LockMonitor::assess(double best_ncc, std::span<const ParticleScore> p
     r.fix_run = candidate_run_;
     r.confident = candidate_run_ >= config_.fix_steps;
     if (r.confident) fixed_ = true;
+    else if (r.weak) fixed_ = false;  // the place no longer stood out: the old fix vouches for nothing now
     r.fixed_before = fixed_;
     if (r.confident) {  // a fix: dead reckoning restarts here
         dead_x_ = ex, dead_y_ = ey;

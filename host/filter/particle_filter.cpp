@@ -314,6 +314,7 @@ std::size_t ParticleFilter::measure(const FilterInput& in, double& score_ms, dou
     }
     probe_scores_.assign(scores_.begin() + static_cast<std::ptrdiff_t>(particles_.size()), scores_.end());
     scores_.resize(particles_.size());
+    if (!probe_scores_.empty()) score_near_probes(in, probe_yaw, score_ms);
     frame_weight = 1;
     const UpdateModel& u = config_.update;
     if (u.unknown_neutral && steps_since_lost_ > kDoubtSteps) {
@@ -387,6 +388,12 @@ void ParticleFilter::update_estimate() {
         double s2 = 0;
         for (const Particle& p : particles_) s2 += p.weight * ((p.x - estimate_.x) * (p.x - estimate_.x) + (p.y - estimate_.y) * (p.y - estimate_.y));
         estimate_.spread_px = std::sqrt(s2 / sw);
+        double cxx = 0, cxy = 0, cyy = 0;
+        for (const Particle& p : particles_) {
+            const double dx = p.x - estimate_.x, dy = p.y - estimate_.y;
+            cxx += p.weight * dx * dx, cxy += p.weight * dx * dy, cyy += p.weight * dy * dy;
+        }
+        estimate_.cov_xx = cxx / sw, estimate_.cov_xy = cxy / sw, estimate_.cov_yy = cyy / sw;
         const double resultant = std::min(1.0, std::hypot(ss, sc) / sw);  // mean resultant length R
         estimate_.yaw_sd = std::sqrt(-2 * std::log(std::max(resultant, 1e-12)));  // uniform yaws: large (> pi)
     }
@@ -444,6 +451,21 @@ StepReport ParticleFilter::step(const FilterInput& in) {
     counters_.particles_off_map += r.off_map;
     counters_.reinitialisations += r.reinitialised;
     return r;
+}
+
+// The ring's probes fell off a small map (or on its no-data): random places inside the map instead
+// (lock_monitor.hpp, "Small maps").
+void ParticleFilter::score_near_probes(const FilterInput& in, double yaw, double& score_ms) {
+    const auto valid = static_cast<std::size_t>(std::count_if(probe_scores_.begin(), probe_scores_.end(), [](const ParticleScore& s) { return s.valid(); }));
+    if (valid >= LockMonitor::kMinProbes) return;
+    const auto [width, height] = scorer_.map_size();
+    const double footprint_px = in.map_px_per_camera_px * in.frame.width;
+    near_poses_.clear();
+    if (lock_.add_near_probes(estimate_.x, estimate_.y, yaw, footprint_px, width, height, near_poses_) == 0) return;
+    probe_scores_.resize(near_poses_.size());
+    const auto t0 = std::chrono::steady_clock::now();
+    scorer_.score(in.frame, in.map_px_per_camera_px, near_poses_, probe_scores_, nullptr);
+    score_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
 void ParticleFilter::check_lock(const StepMotion& m, StepReport& r) {

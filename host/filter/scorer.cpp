@@ -29,7 +29,7 @@ GrayImage downscale_frame(GrayView frame, int width, double& factor) {
 }
 
 BackendScorer::BackendScorer(Backend& backend, GrayView map, const BackendScorerOptions& options, GrayView valid)
-    : backend_(backend), map_(backend.upload_map(map, valid)), options_(options) {
+    : backend_(backend), map_width_(map.width), map_height_(map.height), map_(backend.upload_map(map, valid)), options_(options) {
     if (options.template_width != 0 && options.template_width < 8)
         throw Error("BackendScorer: template_width " + std::to_string(options.template_width) + " must be 0 or >= 8");
 }

@@ -1,5 +1,6 @@
 #include "trn/localize/localizer.hpp"
 
+#include <algorithm>
 #include <cstdio>
 
 #include "trn/error.hpp"
@@ -18,9 +19,10 @@ std::string number(double v) {
 }  // namespace
 
 // A lost step is usually also weak or inconsistent. assess() always measures the drift, so no drift
-// means the step was not assessed. "ok" needs evidence (issue 43): a fix since the start or the last
-// loss, and a contrast measured this step; a redraw is a loss; a frame that told nothing, or a map
-// too small for the probes (NaN contrast), leaves the position unjudged.
+// means the step was not assessed. "ok" needs evidence (issue 43): a fix since the start, the last
+// loss or the last weak step (after an odometry glitch the old fix vouches for nothing), and a
+// contrast measured this step; a redraw is a loss; a frame that told nothing, or no probe scored
+// (NaN contrast), leaves the position unjudged.
 const char* lock_state_name(const filter::LockReport& l) {
     if (std::isnan(l.drift_m)) return "none";
     if (l.lost || l.redrawn) return "lost";
@@ -40,6 +42,9 @@ void LocalizerConfig::validate() const {
     if (!std::isnan(camera_hfov_deg) && !(camera_hfov_deg > 0 && camera_hfov_deg < 180))
         throw Error("localizer config: camera_hfov_deg must be in (0, 180) degrees, got " + number(camera_hfov_deg));
     if (!(max_tilt_deg >= 0 && max_tilt_deg < 90)) throw Error("localizer config: max_tilt_deg must be in [0, 90)");
+    if (map_origin && !(std::fabs(map_origin->latitude_deg) < 90 && std::fabs(map_origin->longitude_deg) <= 180))
+        throw Error("localizer config: map_origin must be a latitude in (-90, 90) and a longitude in [-180, 180] degrees, got " +
+                    number(map_origin->latitude_deg) + ", " + number(map_origin->longitude_deg));
     if (scoring.template_width < 0) throw Error("localizer config: scoring.template_width must be >= 0 (0: full width)");
 }
 
@@ -58,12 +63,37 @@ Localizer::Localizer(GrayView map, double metres_per_pixel, Backend& backend, co
 
 Localizer::~Localizer() = default;
 
+// Map pixels (x east, y south) to metres north/east: north = -y, so the cross term changes sign.
+void Localizer::add_uncertainty(const filter::Estimate& f, double time_s, Estimate& e) {
+    const double m2 = mpp_ * mpp_;
+    e.cov_xx_px2 = f.cov_xx, e.cov_xy_px2 = f.cov_xy, e.cov_yy_px2 = f.cov_yy;
+    e.cov_ee_m2 = f.cov_xx * m2, e.cov_nn_m2 = f.cov_yy * m2, e.cov_ne_m2 = -f.cov_xy * m2;
+    const double half_trace = (e.cov_ee_m2 + e.cov_nn_m2) / 2;
+    const double radius = std::hypot((e.cov_ee_m2 - e.cov_nn_m2) / 2, e.cov_ne_m2);
+    e.eph_m = std::sqrt(std::max(0.0, half_trace + radius));
+    if (config_.map_origin) {
+        sim::Map frame;  // resolution and origin only
+        frame.metres_per_pixel = mpp_, frame.origin = config_.map_origin;
+        const sim::LatLon ll = sim::map_pixel_to_latlon(frame, e.x, e.y);
+        e.latitude_deg = ll.latitude_deg, e.longitude_deg = ll.longitude_deg;
+    }
+    e.time_s = time_s;
+    const double dt = time_s - previous_.time_s;
+    if (dt > 0) {  // NaN on either side: no velocity
+        e.vel_east_mps = (e.x - previous_.x) * mpp_ / dt, e.vel_north_mps = -(e.y - previous_.y) * mpp_ / dt;
+        const double per_axis = (e.cov_ee_m2 + e.cov_nn_m2 + previous_.cov_ee_m2 + previous_.cov_nn_m2) / 4;
+        e.vel_var_m2ps2 = 2 * per_axis / (dt * dt);
+    }
+    previous_ = e;
+}
+
 const filter::FilterCounters& Localizer::counters() const { return filter_->counters(); }
 const std::vector<filter::Particle>& Localizer::particles() const { return filter_->particles(); }
 
 void Localizer::start(double x, double y, double heading_rad) {
     if (!std::isfinite(x) || !std::isfinite(y)) throw Error("localizer: start position must be finite map pixels");
     filter_->initialise(x, y, heading_rad);
+    previous_ = Estimate{};  // no velocity across a restart
     started_ = true;
 }
 
@@ -103,6 +133,7 @@ Estimate Localizer::step(const Observation& o) {
     e.x = rep.estimate.x, e.y = rep.estimate.y, e.yaw = rep.estimate.yaw;
     e.best_x = rep.estimate.best_x, e.best_y = rep.estimate.best_y, e.best_yaw = rep.estimate.best_yaw, e.best_ncc = rep.estimate.best_ncc;
     e.spread_m = rep.estimate.spread_px * mpp_;
+    add_uncertainty(rep.estimate, o.time_s, e);
     e.yaw_sd = rep.estimate.yaw_sd;
     e.particles = rep.particles, e.off_map = rep.off_map, e.frame_weight = rep.frame_weight;
     e.frame_missing = rep.frame_missing;

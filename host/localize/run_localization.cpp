@@ -66,6 +66,7 @@ LocalizationResult run_localization(filter::FlightSource& source, Localizer& loc
         }
         if (!s.image.pixels.empty()) o.frame = s.image.view();
         o.map_px_per_camera_px = s.map_px_per_camera_px;  // the source has levelled the frame already
+        o.time_s = s.time_s;
         const Estimate e = localizer.step(o);
         wall_s += e.step_ms / 1000;
 
@@ -86,7 +87,9 @@ LocalizationResult run_localization(filter::FlightSource& source, Localizer& loc
         if (s.has_truth) {
             row.error_m = std::hypot(row.estimate_x - s.truth_x, row.estimate_y - s.truth_y) * mpp;
             row.odometry_error_m = std::hypot(row.odometry_x - s.truth_x, row.odometry_y - s.truth_y) * mpp;
+            row.error_sigmas = error_in_sigmas((row.estimate_x - s.truth_x) * mpp, -(row.estimate_y - s.truth_y) * mpp, e.cov_nn_m2, e.cov_ne_m2, e.cov_ee_m2);
         }
+        row.cov_nn_m2 = e.cov_nn_m2, row.cov_ne_m2 = e.cov_ne_m2, row.cov_ee_m2 = e.cov_ee_m2;
         row.particles = e.particles, row.off_map = e.off_map, row.frame_weight = e.frame_weight;
         row.score_ms = e.score_ms, row.step_ms = e.step_ms;
         row.odometry_lost = e.odometry_lost, row.frame_missing = e.frame_missing && !s.too_oblique, row.reinitialised = e.reinitialised;

@@ -36,6 +36,14 @@ std::string format_lock_summary(const LocalizationSummary& s) {
     return buf;
 }
 
+double error_in_sigmas(double e, double n, double cov_nn, double cov_ne, double cov_ee) {
+    const double det = cov_nn * cov_ee - cov_ne * cov_ne;
+    if (!(det > 0)) return e == 0 && n == 0 ? 0 : INFINITY;
+    // e' C^-1 e with C = [ee ne; ne nn] over (east, north)
+    const double d2 = (cov_nn * e * e - 2 * cov_ne * e * n + cov_ee * n * n) / det;
+    return std::sqrt(std::max(0.0, d2));
+}
+
 LocalizationSummary summarise(const std::vector<LocalizationRow>& rows, const filter::FilterCounters& counters, double wall_s) {
     LocalizationSummary s;
     s.steps = rows.size();
@@ -65,6 +73,10 @@ LocalizationSummary summarise(const std::vector<LocalizationRow>& rows, const fi
         s.filter_error_slope_m_per_km = f.slope, s.filter_error_intercept_m = f.intercept;
         s.odometry_error_slope_m_per_km = o.slope, s.odometry_error_intercept_m = o.intercept;
     }
+    std::size_t judged = 0, in1 = 0, in2 = 0;
+    for (const LocalizationRow& r : rows)
+        if (!std::isnan(r.error_sigmas)) ++judged, in1 += r.error_sigmas <= 1, in2 += r.error_sigmas <= 2;
+    if (judged) s.inside_1sigma = double(in1) / judged, s.inside_2sigma = double(in2) / judged;
     // The heading estimate.
     s.final_yaw_sd_deg = rows.back().estimate_yaw_sd / kDeg;
     double yaw_sum = 0, conv_err = 0, conv_yaw = 0;

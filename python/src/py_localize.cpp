@@ -61,7 +61,8 @@ localize::LocalizerConfig make_config(std::optional<std::pair<double, double>> s
                                       std::optional<std::size_t> min_particles, std::optional<std::size_t> max_particles,
                                       std::optional<std::size_t> particles, std::optional<double> init_radius_m,
                                       std::optional<double> reinit_radius_m, const std::string& heading, std::optional<double> start_heading_sd_deg,
-                                      const std::string& profile, std::optional<bool> lock_monitor) {
+                                      const std::string& profile, std::optional<bool> lock_monitor,
+                                      std::optional<std::pair<double, double>> map_origin) {
     // The profile first (ours or dissertation: docs/PROFILES.md); a keyword given (not None) over it.
     localize::LocalizerConfig c;
     try {
@@ -100,8 +101,12 @@ localize::LocalizerConfig make_config(std::optional<std::pair<double, double>> s
     if (particles) c.filter.fixed_particles = *particles;
     if (init_radius_m) c.filter.init_radius_m = *init_radius_m;
     if (reinit_radius_m) c.filter.reinit_radius_m = *reinit_radius_m;
+    if (map_origin) c.map_origin = sim::GeoOrigin{map_origin->first, map_origin->second};
     return c;
 }
+
+// Optional value or None.
+pyb::object maybe(double v) { return std::isfinite(v) ? pyb::object(pyb::float_(v)) : pyb::object(pyb::none()); }
 
 pyb::dict estimate_dict(const localize::Estimate& e) {
     pyb::dict d;
@@ -115,13 +120,18 @@ pyb::dict estimate_dict(const localize::Estimate& e) {
     d["lock_contrast"] = e.lock.contrast, d["lock_drift_m"] = e.lock.drift_m;
     d["score_ms"] = e.score_ms, d["step_ms"] = e.step_ms;
     d["yaw_sd"] = e.yaw_sd;
+    d["cov_xx_px2"] = e.cov_xx_px2, d["cov_xy_px2"] = e.cov_xy_px2, d["cov_yy_px2"] = e.cov_yy_px2;
+    d["cov_nn_m2"] = e.cov_nn_m2, d["cov_ne_m2"] = e.cov_ne_m2, d["cov_ee_m2"] = e.cov_ee_m2, d["eph_m"] = e.eph_m;
+    d["latitude_deg"] = maybe(e.latitude_deg), d["longitude_deg"] = maybe(e.longitude_deg), d["time_s"] = maybe(e.time_s);
+    d["vel_north_mps"] = maybe(e.vel_north_mps), d["vel_east_mps"] = maybe(e.vel_east_mps), d["vel_var_m2ps2"] = maybe(e.vel_var_m2ps2);
     return d;
 }
 
 pyb::dict step(PyLocalizer& l, const pyb::object& frame, std::optional<std::pair<double, double>> odometry,
                std::optional<double> heading_rad, std::optional<double> altitude_agl_m, std::optional<double> scale,
-               std::optional<std::pair<double, double>> attitude, std::optional<double> odometry_yaw_rad) {
+               std::optional<std::pair<double, double>> attitude, std::optional<double> odometry_yaw_rad, std::optional<double> time_s) {
     localize::Observation o;
+    if (time_s) o.time_s = *time_s;
     if (odometry_yaw_rad) o.odometry_yaw_rad = *odometry_yaw_rad;
     BorrowedGray image;
     if (!frame.is_none()) {
@@ -144,9 +154,6 @@ pyb::dict step(PyLocalizer& l, const pyb::object& frame, std::optional<std::pair
     }
     return estimate_dict(e);
 }
-
-// Optional value or None.
-pyb::object maybe(double v) { return std::isfinite(v) ? pyb::object(pyb::float_(v)) : pyb::object(pyb::none()); }
 
 pyb::dict air_row(const localize::AirFrame& f) {
     pyb::dict d;
@@ -211,6 +218,10 @@ pyb::dict columns(const std::vector<localize::LocalizationRow>& rows) {
     d["score_ms"] = column([](const Row& r) { return r.score_ms; });
     d["estimate_lat"] = column([](const Row& r) { return r.estimate_lat; });
     d["estimate_lon"] = column([](const Row& r) { return r.estimate_lon; });
+    d["cov_nn_m2"] = column([](const Row& r) { return r.cov_nn_m2; });
+    d["cov_ne_m2"] = column([](const Row& r) { return r.cov_ne_m2; });
+    d["cov_ee_m2"] = column([](const Row& r) { return r.cov_ee_m2; });
+    d["error_sigmas"] = column([](const Row& r) { return r.error_sigmas; });
     return d;
 }
 
@@ -226,6 +237,7 @@ pyb::dict summary_dict(const localize::LocalizationSummary& s) {
     d["frames_too_oblique"] = s.frames_too_oblique;
     d["odometry_lost"] = s.counters.odometry_lost, d["frames_missing"] = s.counters.frames_missing;
     d["reinitialisations"] = s.counters.reinitialisations, d["lock_lost_events"] = s.counters.lock_lost_events;
+    d["truth_inside_1sigma"] = maybe(s.inside_1sigma), d["truth_inside_2sigma"] = maybe(s.inside_2sigma);
     return d;
 }
 
@@ -252,7 +264,7 @@ pyb::dict localize_flight(const std::string& dataset, const std::string& map, co
         spec.to_latlon = in.to_latlon;
         spec.localizer = make_config(start, start_heading_rad, std::nullopt, max_tilt_deg, template_width, sparse, seed, conversion, sampling,
                                      min_particles, max_particles, particles, init_radius_m, reinit_radius_m, heading, start_heading_sd_deg, profile,
-                                     lock_monitor);
+                                     lock_monitor, std::nullopt);
         if (!backend) throw pyb::type_error("backend: a trnkit.Backend");
         localize::LocalizationResult r;
         {
@@ -297,12 +309,12 @@ Same inputs, same seed: the same estimates as `trnkit localize`, bit for bit.)")
                           std::optional<std::size_t> min_particles, std::optional<std::size_t> max_particles,
                           std::optional<std::size_t> particles, std::optional<double> init_radius_m, std::optional<double> reinit_radius_m,
                           const std::string& heading, std::optional<double> start_heading_sd_deg, const std::string& profile,
-                          std::optional<bool> lock_monitor) {
+                          std::optional<bool> lock_monitor, std::optional<std::pair<double, double>> map_origin) {
                  auto l = std::make_shared<PyLocalizer>();
                  const localize::LocalizerConfig c =
                      make_config(start, start_heading_rad, camera_hfov_deg, max_tilt_deg, template_width, sparse, seed, conversion, sampling,
                                  min_particles, max_particles, particles, init_radius_m, reinit_radius_m, heading, start_heading_sd_deg, profile,
-                                 lock_monitor);
+                                 lock_monitor, map_origin);
                  const BorrowedGray view = gray_view(map, "map");
                  const std::optional<BorrowedGray> mask =
                      valid.is_none() ? std::nullopt : std::optional<BorrowedGray>(gray_view(valid, "valid"));
@@ -324,6 +336,7 @@ Same inputs, same seed: the same estimates as `trnkit localize`, bit for bit.)")
              "conversion"_a = "logistic:0.2", "sampling"_a = "kld", "min_particles"_a = pyb::none(), "max_particles"_a = pyb::none(),
              "particles"_a = pyb::none(), "init_radius_m"_a = pyb::none(), "reinit_radius_m"_a = pyb::none(), "heading"_a = "compass",
              "start_heading_sd_deg"_a = pyb::none(), "profile"_a = "ours", "lock_monitor"_a = pyb::none(),
+             "map_origin"_a = pyb::none(),
              R"(map: 2-D uint8 array; metres_per_pixel: its resolution; backend: a trnkit.Backend (python/trnkit/_localize.py
 also takes a spec string and then owns the backend).
 start: (x, y) map pixels, the last known position. start_heading_rad: centre of the initial headings
@@ -331,17 +344,22 @@ start: (x, y) map pixels, the last known position. start_heading_rad: centre of 
 altitude_agl_m or attitude. heading: "compass" (each step's heading_rad sets the yaw) or "none"
 (no compass: yaw estimated, start_heading_rad None = uniform prior, else Gaussian with
 start_heading_sd_deg degrees; steps give odometry in the previous frame's axes (right_m, forward_m)
-and odometry_yaw_rad). The rest are the filter's settings (trn/filter/particle_filter.hpp).)")
+and odometry_yaw_rad). map_origin: (latitude, longitude) of map pixel (0, 0) on a north-up map
+(estimates then also in degrees), or None. The rest are the filter's settings (trn/filter/particle_filter.hpp).)")
         .def("step", &step, "frame"_a = pyb::none(), pyb::kw_only(), "odometry"_a = pyb::none(), "heading_rad"_a = pyb::none(),
              "altitude_agl_m"_a = pyb::none(), "scale"_a = pyb::none(), "attitude"_a = pyb::none(), "odometry_yaw_rad"_a = pyb::none(),
+             "time_s"_a = pyb::none(),
              R"(One camera frame (2-D uint8, grey, as taken; None: no frame this step) and the sensors since the last step:
 odometry (east_m, north_m) displacement or None (lost); heading_rad compass heading or None;
 altitude_agl_m metres above the ground, or scale (map pixels per frame pixel); attitude (roll_rad,
 pitch_rad) or None (a tilted frame is warped to nadir, beyond max_tilt_deg not scored);
 odometry_yaw_rad (heading="none"): the frame's rotation since the last step, clockwise, or None.
+time_s: when the frame was taken, seconds on one clock (velocity needs two steps with it), or None.
 Returns a dict: x, y, yaw (radians), best_*, spread_m, particles, off_map, frame_missing,
 too_oblique, tilt_deg, odometry_lost, reinitialised, lock_state, lock_contrast, lock_drift_m,
-score_ms, step_ms, yaw_sd (circular sd of the yaws, radians).)")
+score_ms, step_ms, yaw_sd (circular sd of the yaws, radians), the covariance cov_xx_px2, cov_xy_px2,
+cov_yy_px2 (map) and cov_nn_m2, cov_ne_m2, cov_ee_m2 (north/east), eph_m, latitude_deg, longitude_deg,
+time_s, vel_north_mps, vel_east_mps, vel_var_m2ps2 (None when unknown).)")
         .def(
             "close",
             [](PyLocalizer& l) {

@@ -3,7 +3,7 @@
 import os
 from collections.abc import Iterable, Mapping
 from contextlib import AbstractContextManager
-from typing import Any, Literal, NamedTuple, overload
+from typing import Any, Literal, NamedTuple, TypedDict, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -153,7 +153,41 @@ def integrate_energy(log: str | os.PathLike[str] | PowerTrace, markers: str | os
 
 # --- localization (trn::localize): map pixels, RADIANS, metres -----------------------------------
 
-Estimate = dict[str, Any]  # x, y, yaw, best_*, spread_m, particles, off_map, frame_missing, ..., step_ms, yaw_sd
+class Estimate(TypedDict):  # what Localizer.step returns (a dict at run time; test_localize checks the keys)
+    x: float
+    y: float
+    yaw: float
+    best_x: float
+    best_y: float
+    best_yaw: float
+    best_ncc: float
+    spread_m: float
+    particles: int
+    off_map: int
+    frame_missing: bool
+    too_oblique: bool
+    tilt_deg: float
+    odometry_lost: bool
+    reinitialised: bool
+    lock_state: Literal["none", "unknown", "ok", "weak", "inconsistent", "fix", "lost"]
+    lock_contrast: float
+    lock_drift_m: float
+    score_ms: float
+    step_ms: float
+    yaw_sd: float
+    cov_xx_px2: float
+    cov_xy_px2: float
+    cov_yy_px2: float
+    cov_nn_m2: float
+    cov_ne_m2: float
+    cov_ee_m2: float
+    eph_m: float
+    latitude_deg: float | None
+    longitude_deg: float | None
+    time_s: float | None
+    vel_north_mps: float | None
+    vel_east_mps: float | None
+    vel_var_m2ps2: float | None
 
 class Localizer(AbstractContextManager["Localizer"]):
     def __init__(self, map: npt.NDArray[np.uint8], metres_per_pixel: float, backend: Backend | str = "cpu", *,
@@ -164,10 +198,11 @@ class Localizer(AbstractContextManager["Localizer"]):
                  max_particles: int | None = None, particles: int | None = None, init_radius_m: float | None = None,
                  reinit_radius_m: float | None = None, heading: Literal["compass", "none"] = "compass",
                  start_heading_sd_deg: float | None = None, profile: Literal["ours", "dissertation"] = "ours",
-                 lock_monitor: bool | None = None) -> None: ...
+                 lock_monitor: bool | None = None, map_origin: tuple[float, float] | None = None) -> None: ...
     def step(self, frame: npt.NDArray[np.uint8] | None = None, *, odometry: tuple[float, float] | None = None,
              heading_rad: float | None = None, altitude_agl_m: float | None = None, scale: float | None = None,
-             attitude: tuple[float, float] | None = None, odometry_yaw_rad: float | None = None) -> Estimate: ...
+             attitude: tuple[float, float] | None = None, odometry_yaw_rad: float | None = None,
+             time_s: float | None = None) -> Estimate: ...
     def close(self) -> None: ...
 
 def load_gray(path: str | os.PathLike[str]) -> npt.NDArray[np.uint8]: ...

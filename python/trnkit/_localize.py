@@ -38,13 +38,15 @@ class Localizer:
     uniform with start_heading_rad None, else Gaussian around it with start_heading_sd_deg degrees;
     each step then gives odometry=(right_m, forward_m) in the previous frame's axes and
     odometry_yaw_rad, the frame's rotation since then: read_air_folder's step_without_compass).
+    map_origin: (latitude, longitude) in degrees of map pixel (0, 0) on a north-up map: estimates then
+    also carry latitude_deg / longitude_deg (None: map pixels only).
 
     Use it in a `with` block or call close() to release the map and the backend."""
 
     def __init__(self, map, metres_per_pixel, backend="cpu", *, valid=None, start, start_heading_rad=None, camera_hfov_deg=None,
                  max_tilt_deg=10.0, template_width=160, sparse=1.0, seed=1, conversion="logistic:0.2", sampling="kld",
                  min_particles=None, max_particles=None, particles=None, init_radius_m=None, reinit_radius_m=None, heading="compass",
-                 start_heading_sd_deg=None, profile="ours", lock_monitor=None):
+                 start_heading_sd_deg=None, profile="ours", lock_monitor=None, map_origin=None):
         if start_heading_rad is not None and abs(start_heading_rad) > 2 * math.pi:
             warnings.warn(f"start_heading_rad={start_heading_rad} is beyond 2 pi: degrees? (math.radians converts)", YawUnitWarning,
                           stacklevel=2)
@@ -56,10 +58,10 @@ class Localizer:
             max_tilt_deg=max_tilt_deg, template_width=template_width, sparse=sparse, seed=seed, conversion=conversion,
             sampling=sampling, min_particles=min_particles, max_particles=max_particles, particles=particles,
             init_radius_m=init_radius_m, reinit_radius_m=reinit_radius_m, heading=heading, start_heading_sd_deg=start_heading_sd_deg,
-            profile=profile, lock_monitor=lock_monitor)
+            profile=profile, lock_monitor=lock_monitor, map_origin=None if map_origin is None else tuple(map_origin))
 
     def step(self, frame=None, *, odometry=None, heading_rad=None, altitude_agl_m=None, scale=None, attitude=None,
-             odometry_yaw_rad=None):
+             odometry_yaw_rad=None, time_s=None):
         """One camera frame and what the other sensors said since the previous step.
 
         frame: 2-D uint8 array, grey, as taken (None: no frame this step; the particles are moved,
@@ -69,17 +71,22 @@ class Localizer:
         per frame pixel). attitude: (roll_rad, pitch_rad) in RADIANS: a tilted frame is warped to
         nadir; beyond max_tilt_deg it is not scored (too_oblique). odometry_yaw_rad (heading="none"):
         the frame's rotation since the previous step in RADIANS, clockwise (None: unknown); odometry
-        is then (right_m, forward_m) in the previous frame's axes.
+        is then (right_m, forward_m) in the previous frame's axes. time_s: when the frame was taken,
+        seconds on one clock (None: unknown); the velocity needs two steps with it.
 
         Returns a dict: x, y, yaw (map pixels, radians), best_x, best_y, best_yaw, best_ncc (the
         best particle), spread_m, particles, off_map, frame_missing, too_oblique, tilt_deg (degrees),
         odometry_lost, reinitialised, lock_state ("none", "unknown", "ok", "weak", "inconsistent", "fix",
         "lost"), lock_contrast, lock_drift_m, score_ms, step_ms (milliseconds), yaw_sd (circular sd of the
-        particles' yaws, radians: the heading's spread)."""
+        particles' yaws, radians: the heading's spread), the position's covariance in the map's frame
+        (cov_xx_px2, cov_xy_px2, cov_yy_px2) and north/east in metres^2 (cov_nn_m2, cov_ne_m2,
+        cov_ee_m2), eph_m (1 sigma, worst axis), latitude_deg / longitude_deg (with map_origin),
+        time_s, vel_north_mps, vel_east_mps and vel_var_m2ps2 (None when unknown): typed in the
+        package's stubs (Estimate)."""
         if heading_rad is not None and abs(heading_rad) > 2 * math.pi:
             warnings.warn(f"heading_rad={heading_rad} is beyond 2 pi: degrees? (math.radians converts)", YawUnitWarning, stacklevel=2)
         return self._impl.step(frame, odometry=odometry, heading_rad=heading_rad, altitude_agl_m=altitude_agl_m, scale=scale,
-                               attitude=attitude, odometry_yaw_rad=odometry_yaw_rad)
+                               attitude=attitude, odometry_yaw_rad=odometry_yaw_rad, time_s=time_s)
 
     def close(self):
         """Releases the map on the device now (and the backend when it was made from a spec string); a
@@ -140,7 +147,7 @@ def localize(*, dataset, map="", backend="cpu", metres_per_pixel=0.0, hfov_deg=0
 
     Returns {"rows": dict of NumPy columns (frame, time_s, distance_m, truth_x, truth_y, odometry_x,
     odometry_y, estimate_x, estimate_y, estimate_yaw, error_m, odometry_error_m, particles,
-    score_ms, estimate_lat, estimate_lon), "summary": summary.json's numbers, "backend",
+    score_ms, estimate_lat, estimate_lon, cov_nn_m2, cov_ne_m2, cov_ee_m2, error_sigmas), "summary": summary.json's numbers, "backend",
     "metres_per_pixel", "start"}. Errors name the keyword (ValueError "dataset: ...")."""
     own = Backend(backend) if isinstance(backend, str) else None  # made for this flight, closed after it
     try:

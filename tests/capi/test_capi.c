@@ -480,8 +480,36 @@ static void test_localizer(void) {
     CHECK_OK(trn_localizer_step(loc, &o, &e));
     CHECK(!e.frame_missing && e.particles > 0 && e.step_ms >= e.score_ms, "scored step: missing %d particles %zu", e.frame_missing, e.particles);
     CHECK_FAILS(trn_localizer_step(loc, NULL, &e), TRN_ERR_INVALID_ARGUMENT, "observation is NULL");
+    /* Issue 43 item 2: the covariance (its trace is the spread), eph, no lat/lon without an origin,
+     * velocity from two frame times. */
+    CHECK(isnan(o.time_s) && isnan(c.map_origin_lat_deg) && isnan(c.map_origin_lon_deg), "time and origin default to NaN");
+    CHECK(fabs(e.cov_ee_m2 + e.cov_nn_m2 - e.spread_m * e.spread_m) < 1e-6 * (1 + e.spread_m * e.spread_m) &&
+              fabs(e.cov_ee_m2 - e.cov_xx_px2 * 0.25) < 1e-9 * (1 + e.cov_ee_m2) && fabs(e.cov_ne_m2 + e.cov_xy_px2 * 0.25) < 1e-9 * (1 + e.cov_ee_m2) &&
+              e.eph_m * e.eph_m <= e.cov_ee_m2 + e.cov_nn_m2 + 1e-9 && isnan(e.latitude_deg) && isnan(e.vel_east_mps),
+          "covariance: ee %g nn %g ne %g spread %g eph %g", e.cov_ee_m2, e.cov_nn_m2, e.cov_ne_m2, e.spread_m, e.eph_m);
+    {
+        trn_estimate e2;
+        trn_observation t = trn_observation_default();
+        t.odometry_east_m = 2, t.odometry_north_m = 0, t.heading_rad = 0, t.time_s = 5;
+        CHECK_OK(trn_localizer_step(loc, &t, &e));
+        t.time_s = 7;
+        CHECK_OK(trn_localizer_step(loc, &t, &e2));
+        CHECK(e2.time_s == 7 && fabs(e2.vel_east_mps - (e2.x - e.x) * 0.5 / 2) < 1e-12 && e2.vel_var_m2ps2 > 0,
+              "velocity %g from x %g -> %g over 2 s", e2.vel_east_mps, e.x, e2.x);
+    }
     trn_localizer_destroy(loc);
     loc = NULL;
+    c.map_origin_lat_deg = 41.0;
+    CHECK_FAILS(trn_localizer_create(cpu, map_pixels, MAP_W, MAP_H, MAP_STRIDE, 0.5, &c, &loc), TRN_ERR_INVALID_ARGUMENT, "go together");
+    c.map_origin_lon_deg = -83.3;
+    CHECK_OK(trn_localizer_create(cpu, map_pixels, MAP_W, MAP_H, MAP_STRIDE, 0.5, &c, &loc));
+    o = trn_observation_default();
+    CHECK_OK(trn_localizer_step(loc, &o, &e));
+    CHECK(e.latitude_deg < 41.0 && e.latitude_deg > 40.99 && e.longitude_deg > -83.3 && e.longitude_deg < -83.29, "lat/lon %g %g",
+          e.latitude_deg, e.longitude_deg);
+    trn_localizer_destroy(loc);
+    loc = NULL;
+    c.map_origin_lat_deg = c.map_origin_lon_deg = NAN;
     /* No compass: a bad mode is named; a uniform yaw prior is wide, a Gaussian one narrow, and the
      * rotation increment turns the estimate. */
     CHECK(c.heading == NULL && isnan(o.odometry_yaw_rad), "heading defaults");

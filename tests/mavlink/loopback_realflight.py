@@ -87,6 +87,11 @@ def check(decoded, rows, mpp):
                 problems.append(where + "%s lat/lon %s %s, CSV %s %s" % (name, f["lat"], f["lon"], row["est_lat"], row["est_lon"]))
         if gps["fix_type"] != 3 or not gps["horiz_accuracy"] > 0 or gps["horiz_accuracy"] != pos["eph"]:
             problems.append(where + "fix_type %s horiz_accuracy %s eph %s" % (gps["fix_type"], gps["horiz_accuracy"], pos["eph"]))
+        # horiz_accuracy is the CSV covariance's worst axis (1 sigma: its largest eigenvalue's root)
+        nn, ne, ee = float(row["cov_nn_m2"]), float(row["cov_ne_m2"]), float(row["cov_ee_m2"])
+        sigma = math.sqrt((nn + ee) / 2 + math.hypot((nn - ee) / 2, ne))
+        if abs(gps["horiz_accuracy"] - sigma) > 1e-4 * max(1.0, sigma):
+            problems.append(where + "horiz_accuracy %s, the CSV covariance's worst axis %.4f m" % (gps["horiz_accuracy"], sigma))
         north = -(float(row["estimate_y"]) - y0) * mpp
         east = (float(row["estimate_x"]) - x0) * mpp
         if abs(odo["x"] - north) > 0.01 or abs(odo["y"] - east) > 0.01:

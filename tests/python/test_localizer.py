@@ -145,3 +145,37 @@ def test_a_backend_with_keywords_serves_the_localizer_and_closing_it_releases_th
     backend.close()
     with pytest.raises(ValueError, match="closed"):
         loc.step(None)
+
+
+def stub_estimate_keys():
+    """The keys of the Estimate TypedDict in the package's stubs."""
+    import ast
+    stub = os.path.join(os.path.dirname(trnkit.__file__), "__init__.pyi")
+    with open(stub) as f:
+        tree = ast.parse(f.read())
+    for node in tree.body:
+        if isinstance(node, ast.ClassDef) and node.name == "Estimate":
+            return {item.target.id for item in node.body if isinstance(item, ast.AnnAssign)}
+    raise AssertionError("no Estimate in " + stub)
+
+
+def test_estimates_carry_covariance_latlon_time_and_velocity_as_typed():
+    """Issue 43 item 2: the online estimate has what an autopilot takes, under the stub's names."""
+    rng = np.random.default_rng(3)
+    ortho = (rng.random((400, 400)) * 255).astype(np.uint8)
+    with trnkit.Localizer(ortho, 0.5, "cpu", start=(200, 200), init_radius_m=20, map_origin=(41.0, -83.3)) as loc:
+        first = loc.step(None, odometry=(0.0, 0.0), heading_rad=0.0, time_s=10.0)
+        second = loc.step(None, odometry=(4.0, 0.0), heading_rad=0.0, time_s=12.0)
+    assert set(second) == stub_estimate_keys()
+    assert first["vel_east_mps"] is None and first["time_s"] == 10.0
+    assert second["vel_east_mps"] == pytest.approx((second["x"] - first["x"]) * 0.5 / 2)
+    assert second["vel_var_m2ps2"] > 0
+    assert second["cov_ee_m2"] == pytest.approx(second["cov_xx_px2"] * 0.25)
+    assert second["cov_ne_m2"] == pytest.approx(-second["cov_xy_px2"] * 0.25)
+    assert second["eph_m"] ** 2 <= second["cov_nn_m2"] + second["cov_ee_m2"] + 1e-9
+    assert 40.99 < second["latitude_deg"] < 41.0 and -83.3 < second["longitude_deg"] < -83.29
+    with trnkit.Localizer(ortho, 0.5, "cpu", start=(200, 200)) as loc:
+        plain = loc.step(None, odometry=(0.0, 0.0), heading_rad=0.0)
+    assert plain["latitude_deg"] is None and plain["time_s"] is None
+    with pytest.raises(trnkit.Error, match="map_origin"):
+        trnkit.Localizer(ortho, 0.5, "cpu", start=(200, 200), map_origin=(95.0, 0.0))

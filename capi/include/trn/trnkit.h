@@ -235,6 +235,7 @@ typedef struct trn_localizer_config {
      * profile's, so a field left alone keeps the profile's value. */
     const char* profile;
     int lock_monitor;            /* nonzero: the wrong-lock monitor is on (ours: 1; dissertation: 0) */
+    double map_origin_lat_deg, map_origin_lon_deg; /* of map pixel (0, 0), north up: estimates in lat/lon too (NaN: none) */
 } trn_localizer_config;
 /* The C++ defaults (profile "ours"); start_x, start_y NaN (to be set). */
 TRN_C_API trn_localizer_config trn_localizer_config_default(void);
@@ -255,6 +256,7 @@ typedef struct trn_observation {
     /* heading "none" only: the frame's rotation since the previous step, clockwise (NaN: unknown);
      * odometry_north_m is then forward (towards the previous frame's top), odometry_east_m to its right. */
     double odometry_yaw_rad;
+    double time_s;               /* when the frame was taken, seconds on one clock (NaN: unknown; velocity needs it) */
 } trn_observation;
 /* No frame, every number NaN, no attitude. */
 TRN_C_API trn_observation trn_observation_default(void);
@@ -270,6 +272,14 @@ typedef struct trn_estimate {
     double lock_contrast, lock_drift_m; /* the lock monitor's evidence (NaN: not assessed) */
     double score_ms, step_ms;     /* wall time of the scoring / of the whole step */
     double yaw_sd;                /* circular sd of the particles' yaws, radians (the heading's spread) */
+    /* The position's covariance (the particles'): map frame (pixels^2, x east, y south) and metres^2
+     * north/east; eph_m: 1 sigma on its worst axis. Its calibration on the real flights: RESULTS.md. */
+    double cov_xx_px2, cov_xy_px2, cov_yy_px2;
+    double cov_nn_m2, cov_ne_m2, cov_ee_m2;
+    double eph_m;
+    double latitude_deg, longitude_deg; /* of (x, y) with config.map_origin_*; NaN without */
+    double time_s;                /* the observation's */
+    double vel_north_mps, vel_east_mps, vel_var_m2ps2; /* from this and the previous estimate (NaN: no times) */
 } trn_estimate;
 
 /* The map (8-bit grey, row stride in bytes) is uploaded to the backend here and need not outlive the

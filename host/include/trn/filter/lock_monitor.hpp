@@ -26,6 +26,11 @@
 // position, within the drift bound (at most `widen_radius_m`); the rest keep the current
 // hypothesis, which wins again at once if it was right. The monitor then waits `cooldown_steps`
 // before its next verdict. Every event is counted.
+// Small maps (issue 43): when fewer than kMinProbes of the ring's probes scored (the ring lies off a
+// map a few hundred metres wide, or on its no-data), the filter scores a second set, "near probes":
+// random places inside the map, at least one frame footprint away from the estimate (so no probe
+// overlaps the place being judged), drawn from their own random stream so that wherever the ring
+// works every draw and verdict stays as it was.
 // The search is widened no further than the drift bound on purpose: over weak texture the true
 // lock itself has a low contrast, and a wider disc always holds some other place that scores
 // better than the truth (a version that doubled the radius at every loss walked off correct
@@ -68,7 +73,7 @@ struct LockReport {
     double fix_contrast = NAN;  // the contrast a fix at this distance from dead reckoning needs
     std::size_t fix_run = 0;    // consecutive steps that met it on one track (a fix at fix_steps)
     bool weak = false, confident = false, inconsistent = false, lost = false;  // confident: a fix
-    bool fixed_before = false;  // a fix was declared since the start (or the last loss): the position was judged
+    bool fixed_before = false;  // a fix since the start, the last loss or the last weak step: the position was judged
     bool redrawn = false;       // set by the filter: the step re-initialised (every weight collapsed)
     bool blind = false;         // set by the filter: no particle had a valid score (the frame told nothing)
     double widen_radius_m = 0;  // when lost: re-scatter within this radius of dead reckoning
@@ -84,6 +89,12 @@ public:
     void predict(double dx_px, double dy_px);
     // Appends the probe poses for this step around (x, y) at `yaw`; returns how many.
     std::size_t add_probes(double x, double y, double yaw, std::vector<Pose>& poses);
+    // Fewer valid probe scores than this: no contrast evidence (assess) / the near probes (above).
+    static constexpr std::size_t kMinProbes = 8;
+    // Appends up to config.probes near probes: inside a map_width x map_height pixel map, at least
+    // `footprint_px` (the frame's width on the map) and at most probe_max_m from (x, y). Returns how
+    // many (0 when the map holds no such place).
+    std::size_t add_near_probes(double x, double y, double yaw, double footprint_px, int map_width, int map_height, std::vector<Pose>& poses);
     // The verdict from the best particle's NCC, the probes' scores, the estimate (map pixels) and
     // the particle cloud's rms spread around it (metres).
     LockReport assess(double best_ncc, std::span<const ParticleScore> probe_scores, double estimate_x, double estimate_y,
@@ -99,10 +110,11 @@ private:
     LockMonitorConfig config_;
     double mpp_;
     std::uint64_t rng_;
+    std::uint64_t near_rng_;  // the near probes' own stream
     double dead_x_ = 0, dead_y_ = 0, since_fix_m_ = 0, fix_uncertainty_m_ = 0;
     double candidate_x_ = 0, candidate_y_ = 0;  // last step of the current fix candidate, moved by odometry
     std::size_t weak_run_ = 0, cooldown_ = 0, candidate_run_ = 0;
-    bool fixed_ = false;  // a fix since the start or the last loss
+    bool fixed_ = false;  // a fix since the start, the last loss or the last weak step
 };
 
 }  // namespace trn::filter

@@ -186,6 +186,9 @@ struct Estimate {
     double best_x = 0, best_y = 0, best_yaw = 0;
     double best_ncc = 0;
     double spread_px = 0;  // weighted rms distance of the particles from (x, y)
+    // Weighted covariance of the particles' positions, map pixels^2 (x east, y south): the cloud's
+    // own uncertainty, before any calibration (localize::Estimate adds the metric frame).
+    double cov_xx = 0, cov_xy = 0, cov_yy = 0;
     double yaw_sd = 0;     // circular standard deviation of the weighted yaws, radians: sqrt(-2 ln R)
 };
 
@@ -231,6 +234,7 @@ private:
     std::size_t measure(const FilterInput& input, double& score_ms, double& frame_weight);  // returns invalid count
     void update_estimate();
     void check_lock(const StepMotion& m, StepReport& report);
+    void score_near_probes(const FilterInput& in, double yaw, double& score_ms);
     double uniform();
     double normal();
 
@@ -240,6 +244,7 @@ private:
     std::vector<double> cumulative_, log_weights_, valid_ncc_;  // scratch of sampling, tempering, the unknown weight
     std::vector<Pose> poses_;
     std::vector<ParticleScore> scores_, probe_scores_;
+    std::vector<Pose> near_poses_;  // the lock monitor's probes inside a small map (score_near_probes)
     Estimate estimate_;
     FilterCounters counters_;
     LockMonitor lock_;

@@ -4,6 +4,7 @@
 // hands every particle to a trn::Backend in one Backend::score call.
 #include <memory>
 #include <span>
+#include <utility>
 
 #include "trn/backend.hpp"
 #include "trn/io/image_io.hpp"
@@ -19,6 +20,9 @@ public:
     // frame, whose pixels each cover `map_px_per_camera_px` map pixels. out.size() >= poses.size().
     virtual void score(GrayView camera_frame, double map_px_per_camera_px, std::span<const Pose> poses,
                        std::span<ParticleScore> out, PhaseTimes* times) = 0;
+    // The map's size in pixels, {0, 0} when the scorer does not know it (the lock monitor then
+    // places its probes without regard to the map's edges).
+    virtual std::pair<int, int> map_size() const { return {0, 0}; }
 };
 
 struct BackendScorerOptions {
@@ -36,9 +40,11 @@ public:
     void score(GrayView camera_frame, double map_px_per_camera_px, std::span<const Pose> poses,
                std::span<ParticleScore> out, PhaseTimes* times) override;
     const BackendScorerOptions& options() const { return options_; }
+    std::pair<int, int> map_size() const override { return {map_width_, map_height_}; }
 
 private:
     Backend& backend_;
+    int map_width_, map_height_;
     MapHandle map_;
     BackendScorerOptions options_;
     std::vector<Pose> scaled_;

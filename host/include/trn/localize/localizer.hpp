@@ -10,11 +10,13 @@
 #include <cmath>
 #include <cstddef>
 #include <memory>
+#include <optional>
 
 #include "trn/backend.hpp"
 #include "trn/filter/nadir_warp.hpp"
 #include "trn/filter/particle_filter.hpp"
 #include "trn/filter/scorer.hpp"
+#include "trn/sim/map.hpp"
 #include "trn/export.hpp"
 
 TRN_API_BEGIN
@@ -30,6 +32,9 @@ struct LocalizerConfig {
     double start_heading_rad = NAN;
     double camera_hfov_deg = NAN;            // horizontal field of view, needed when steps give altitude, not scale
     double max_tilt_deg = filter::kDefaultMaxTiltDeg;  // steps with an attitude tilted further are not scored
+    // Latitude / longitude of map pixel (0, 0) on a north-up map: estimates then also come as
+    // latitude / longitude (sim::map_pixel_to_latlon's local projection). None: map pixels only.
+    std::optional<sim::GeoOrigin> map_origin;
 
     void validate() const;  // throws trn::Error naming the field ("start_x", "camera_hfov_deg", ...)
 };
@@ -62,6 +67,8 @@ struct Observation {
     double odometry_yaw_rad = NAN;
     bool has_attitude = false;                            // roll/pitch measured: a tilted frame is warped to nadir
     double roll_rad = 0, pitch_rad = 0;
+    double time_s = NAN;                                  // when the frame was taken, seconds on any one clock
+                                                          // (NaN: unknown); velocity needs two steps with times
 };
 
 struct Estimate {
@@ -69,6 +76,19 @@ struct Estimate {
     double best_x = 0, best_y = 0, best_yaw = 0, best_ncc = 0;  // the best-scoring particle
     double spread_m = 0;                            // weighted rms distance of the particles from (x, y)
     double yaw_sd = 0;                              // circular sd of the particles' yaws, radians (the heading's spread)
+    // The position's uncertainty: the particles' weighted covariance, in the map's frame (pixels^2,
+    // x east, y south) and in metres^2 north/east (cov_ne: the north-east term). eph_m: 1 sigma on
+    // its worst axis (square root of the largest eigenvalue). How well it covers the truth on the real
+    // flights: docs/RESULTS.md, "Uncertainty".
+    double cov_xx_px2 = 0, cov_xy_px2 = 0, cov_yy_px2 = 0;
+    double cov_nn_m2 = 0, cov_ne_m2 = 0, cov_ee_m2 = 0;
+    double eph_m = 0;
+    double latitude_deg = NAN, longitude_deg = NAN;  // of (x, y), with config.map_origin
+    double time_s = NAN;                             // the observation's
+    // Velocity over the ground from this and the previous step's estimates and times (NaN: no
+    // previous step with a time), m/s, and its variance per axis (the two positions' average
+    // variance per axis, taken independent, over dt^2).
+    double vel_north_mps = NAN, vel_east_mps = NAN, vel_var_m2ps2 = NAN;
     std::size_t particles = 0, off_map = 0;         // scored this step / of them with no valid score
     double frame_weight = 1;                        // the update's tempering exponent (filter::UpdateModel): 1 the frame
                                                     // believed whole, smaller: believed in part, 0: it told nothing
@@ -82,8 +102,9 @@ struct Estimate {
 
 // The lock monitor's verdict in one word, the strongest first: "none" (not assessed: monitor off or
 // no frame), "lost" (the monitor's verdict, or the filter redrew its particles), "fix",
-// "inconsistent", "weak", "unknown" (not judged: no fix yet since the start or the last loss, no
-// random place on the map to compare the best score with, or the frame told nothing), "ok".
+// "inconsistent", "weak", "unknown" (not judged: no fix since the start, the last loss or the last
+// weak step, no random place on the map to compare the best score with, or the frame told nothing),
+// "ok" (a fix vouches for the track and this frame's best place stands out).
 const char* lock_state_name(const filter::LockReport& lock);
 
 class Localizer {
@@ -110,12 +131,15 @@ public:
     const DeviceInfo& backend_info() const { return backend_.info(); }
 
 private:
+    void add_uncertainty(const filter::Estimate& f, double time_s, Estimate& e);
+
     LocalizerConfig config_;
     double mpp_;
     Backend& backend_;
     std::unique_ptr<filter::BackendScorer> scorer_;
     std::unique_ptr<filter::ParticleFilter> filter_;
     bool started_ = false;
+    Estimate previous_;  // for the velocity (time_s NaN: none)
 };
 
 }  // namespace trn::localize
