@@ -66,6 +66,7 @@ MarkerFile parse_minimal(const std::vector<text::Line>& lines, std::size_t heade
 
 MarkerFile parse_markers(std::string_view input, const std::string& name) {
     input = io::strip_bom(input);  // a UTF-8 byte order mark (a file saved by a spreadsheet or editor)
+    text::check_row_widths(input, name);  // the memory budget before any row is split
     const auto lines = text::split_lines(input);
     for (std::size_t i = 0; i < lines.size(); ++i) {
         const auto s = text::trim(lines[i].text);

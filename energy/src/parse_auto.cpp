@@ -165,6 +165,8 @@ PowerTrace parse_power_log(std::string_view input, const std::string& name, cons
             throw Error(name + ": option time_uncertainty_s='" + it->second + "' must be a number of seconds in [0, 10]");
         rest.erase(it);
     }
+    // The memory budget before anything splits a row (JSON is parsed whole, never split in fields).
+    if (!(format == "scaphandre" || (format == "auto" && looks_like_json(input)))) text::check_row_widths(input, name);
     PowerTrace tr = parse_in_format(input, name, format, rest);
     if (zone) apply_time_zone(tr, *zone);
     if (uncertainty) {
