@@ -95,6 +95,7 @@ std::string detect_power_log_format(std::string_view input, const std::string& n
             text::fail(name, line.number, "a rapl-tools summary (power.log), not a power trace; it holds only the run's total energy");
     if (l.find("----vbat") != std::string_view::npos || l.find("vin:") != std::string_view::npos)
         text::fail(name, lines[first].number, "free-text charger log with no time stamps: no power trace can be built from it");
+    if (looks_like_likwid_timeline(input)) return "likwid-timeline";
     const auto fields = text::split(l, ',');
     bool all_numbers = fields.size() == 5;
     for (auto f : fields) all_numbers = all_numbers && text::to_number(f).has_value();
