@@ -11,7 +11,7 @@
 #include <fstream>
 
 #include "../cli/cli_process.hpp"
-#include "pi_pmic.hpp"
+#include "sources/raspberry_pi/pi_pmic.hpp"
 #include "log_checks.hpp"
 #include "trn/energy/integrate.hpp"
 #include "trn/energy/power_sampler.hpp"
