@@ -66,5 +66,22 @@ TEST(LabelCheck, AMarkerHeaderValueThatIsNotUtf8IsRefusedWithFileAndLine) {
     }
 }
 
+// A run report edited by hand: JSON escapes let a platform carry an escape sequence to compare's
+// terminal and a line break into its CSV tables.
+TEST(LabelCheck, ARunReportsPlatformObeysTheSameRule) {
+    const std::string good = run_report_json(test::report_with_energies("cpu-A", {0.010, 0.012, 0.011}, "la"));
+    const std::string key = "\"platform\": \"cpu-A\"";
+    ASSERT_NE(good.find(key), std::string::npos) << good.substr(0, 400);
+    EXPECT_EQ(parse_run_report_json(good, "r.json").platform, "cpu-A");
+    std::string bad = good;
+    bad.replace(bad.find(key), key.size(), "\"platform\": \"cpu\\u001b[2J-A\"");
+    try {
+        parse_run_report_json(bad, "r.json");
+        ADD_FAILURE() << "a report whose platform holds an escape sequence was read";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("r.json: platform 'cpu\\x1b[2J-A' holds a control character"), std::string::npos) << e.what();
+    }
+}
+
 }  // namespace
 }  // namespace trn::energy
