@@ -1,4 +1,4 @@
-// Fuzz entry: the frame-marker file of `trnkit frames` (energy/src/markers.cpp). What the parser
+// Fuzz entry: the frame-marker file of `trnkit frames` (energy/src/core/markers.cpp). What the parser
 // accepts must be well-formed (end >= start, finite phase times), map to finite intervals on
 // both clocks, and survive format_markers -> parse_markers unchanged (phase times to the 1e-6 ms
 // that the writer keeps).

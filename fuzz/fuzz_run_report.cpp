@@ -1,5 +1,5 @@
 // Fuzz entry: run-report JSON of `trnkit energy integrate` as `energy compare` reads it
-// (energy/src/run_report.cpp, parse_run_report_json). A refusal must be trn::Error; a report it
+// (energy/src/core/run_report.cpp, parse_run_report_json). A refusal must be trn::Error; a report it
 // accepts and can write again must read back to the same JSON.
 #include <cstdio>
 #include <string>

@@ -14,6 +14,7 @@
 #include "options.hpp"
 #include "write_text.hpp"
 #include "trn/energy/energy_bench.hpp"
+#include "trn/energy/label_check.hpp"
 #include "trn/energy/parsers.hpp"
 #include "trn/energy/plots.hpp"
 #include "trn/error.hpp"
@@ -81,7 +82,9 @@ void add_energy_bench_command(CLI::App* energy) {
     c->add_option("--nvml-lib", a->nvml_lib, "NVML library to dlopen for nvml sources")->capture_default_str();
     c->add_option("--vcgencmd", a->vcgencmd, "vcgencmd program the pmic:vcgencmd source runs (absolute path)")->capture_default_str();
     c->callback([a] {
-        // Everything is checked before the run, which takes minutes.
+        // Everything is checked before the run, which takes minutes, and before the previous run's files are removed.
+        const std::string platform = a->platform.empty() ? host_name() : a->platform;
+        energy::check_label(platform, a->platform.empty() ? "this host's name (--platform's default)" : "--platform");
         io::check_output_folder(a->out, "energy bench", a->force);
         if (!a->no_plots && !io::gnuplot_available()) throw Error("energy bench: gnuplot not found (install it, or pass --no-plots)");
         std::set<std::string> seen;
@@ -112,7 +115,7 @@ void add_energy_bench_command(CLI::App* energy) {
         cfg.run.frames = a->frames, cfg.run.idle_s = a->idle_ms / 1000, cfg.run.lead_idle_s = a->lead_idle_ms / 1000;
         cfg.run.sync_unit_s = a->sync_unit_ms / 1000;
         cfg.period_s = a->period_ms / 1000;
-        cfg.platform = a->platform.empty() ? host_name() : a->platform;
+        cfg.platform = platform;
         cfg.integration.min_samples = a->min_samples;
         cfg.calls_per_frame = a->repeat;
         std::fprintf(stderr, "energy bench: %zu backend(s) x %d frames, sampling %s every %g ms\n", targets.size(), a->frames,

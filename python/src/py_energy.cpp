@@ -174,10 +174,10 @@ void register_energy(pyb::module_& m) {
 
     m.def("power_sources", &energy::list_power_sources, pyb::arg("options"));
     pyb::class_<energy::SamplerOptions>(m, "SamplerOptions")
-        .def(pyb::init([](std::string sysfs_root, std::string nvml_library) {
-                 return energy::SamplerOptions{std::move(sysfs_root), std::move(nvml_library)};
+        .def(pyb::init([](std::string sysfs_root, std::string nvml_library, std::string vcgencmd) {
+                 return energy::SamplerOptions{std::move(sysfs_root), std::move(nvml_library), std::move(vcgencmd)};
              }),
-             pyb::arg("sysfs_root"), pyb::arg("nvml_library"));
+             pyb::arg("sysfs_root"), pyb::arg("nvml_library"), pyb::arg("vcgencmd") = energy::SamplerOptions{}.vcgencmd);
 
     pyb::class_<PySampler>(m, "PowerSampler")
         .def(pyb::init([](const std::string& spec, const energy::SamplerOptions& options) {

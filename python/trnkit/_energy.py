@@ -25,10 +25,11 @@ from ._trnkit import PowerTrace
 __all__ = ["MeasurementWindows", "PowerSampler", "PowerTrace", "integrate_energy", "power_sources"]
 
 _NVML = "libnvidia-ml.so.1"
+_VCGENCMD = "/usr/bin/vcgencmd"
 
 
-def _options(sysfs_root, nvml_library) -> _trnkit.SamplerOptions:
-    return _trnkit.SamplerOptions(os.fspath(sysfs_root), os.fspath(nvml_library))
+def _options(sysfs_root, nvml_library, vcgencmd=_VCGENCMD) -> _trnkit.SamplerOptions:
+    return _trnkit.SamplerOptions(os.fspath(sysfs_root), os.fspath(nvml_library), os.fspath(vcgencmd))
 
 
 def _clock(clock: str, keyword: str = "clock") -> str:
@@ -37,21 +38,24 @@ def _clock(clock: str, keyword: str = "clock") -> str:
     return clock
 
 
-def power_sources(*, sysfs_root: str | os.PathLike = "/sys", nvml_library: str = _NVML) -> list[str]:
+def power_sources(*, sysfs_root: str | os.PathLike = "/sys", nvml_library: str = _NVML,
+                  vcgencmd: str | os.PathLike = _VCGENCMD) -> list[str]:
     """One line per live power source PowerSampler can open on this machine (hwmon INA2xx/INA3221
     rails, RAPL zones, NVIDIA GPUs), plus a line saying why NVML is not available when it is not."""
-    return _trnkit.power_sources(_options(sysfs_root, nvml_library))
+    return _trnkit.power_sources(_options(sysfs_root, nvml_library, vcgencmd))
 
 
 class PowerSampler:
     """A live power source, polled every period_s seconds on a background thread while yours works.
 
     source: "hwmon:NAME[:CHANNEL]" (an INA2xx/INA3221 under SYSFS/class/hwmon), "rapl:NAME"
-    (powercap energy counter) or "nvml:INDEX[:power|:energy]" (an NVIDIA board); power_sources()
-    lists them. Opening checks the source (trnkit.Error naming it and why).
+    (powercap energy counter), "nvml:INDEX[:power|:energy]" (an NVIDIA board) or "pmic:vcgencmd"
+    (a Raspberry Pi 5's PMIC rails, read by running vcgencmd pmic_read_adc at every poll);
+    power_sources() lists them. Opening checks the source (trnkit.Error naming it and why).
     period_s: seconds between polls (> 0). clock: "real" (CLOCK_REALTIME: UNIX seconds, the clock
     MeasurementWindows and other loggers share) or "mono" (CLOCK_MONOTONIC).
-    sysfs_root, nvml_library: where to look (tests point them at a fake tree or library).
+    sysfs_root, nvml_library, vcgencmd: where to look (tests point them at a fake tree, library or
+    program; vcgencmd is an absolute path, run with an empty environment).
 
     start() polls once at once (a source that cannot be read fails before any work) and starts the
     thread; stop() polls once more and returns the PowerTrace (t in seconds on `clock`, w in
@@ -59,14 +63,14 @@ class PowerSampler:
     """
 
     def __init__(self, source: str, *, period_s: float = 0.01, clock: str = "real", sysfs_root: str | os.PathLike = "/sys",
-                 nvml_library: str = _NVML) -> None:
+                 nvml_library: str = _NVML, vcgencmd: str | os.PathLike = _VCGENCMD) -> None:
         if not isinstance(source, str):
             raise TypeError(f"source must be a str such as 'rapl:package-0', not {type(source).__name__}")
         period_s = float(period_s)
         if not period_s > 0:
             raise ValueError(f"period_s={period_s}: expected seconds > 0")
         self.period_s, self.clock = period_s, _clock(clock)
-        self._s = _trnkit.PowerSampler(source, _options(sysfs_root, nvml_library))
+        self._s = _trnkit.PowerSampler(source, _options(sysfs_root, nvml_library, vcgencmd))
         self.trace: PowerTrace | None = None
 
     @property

@@ -145,6 +145,28 @@ TEST(EnergyBenchCli, FailingSamplersAreNamedBeforeAnyWork) {
     EXPECT_FALSE(fs::exists(out));
 }
 
+// Issue 45, class 4: a --platform that is not UTF-8 made the JSON writer fail (exit 2) after the
+// bench had removed the previous run's files. It is refused up front, and those files stay.
+TEST(EnergyBenchCli, APlatformThatIsNotUtf8IsRefusedBeforeThePreviousRunIsTouched) {
+    const fs::path out = temp("trn_bench_cli_label"), sysfs = temp("trn_bench_sysfs_label");
+    fs::create_directories(sysfs / "class/hwmon/hwmon0");
+    std::ofstream(sysfs / "class/hwmon/hwmon0/name") << "ina226\n";
+    std::ofstream(sysfs / "class/hwmon/hwmon0/power1_input") << "2500000\n";
+    const std::string args = "energy bench --source hwmon:ina226 --sysfs-root " + sysfs.string() +
+                             " -b cpu --size 480p -k 2 --idle-ms 5 --lead-idle-ms 20 --period-ms 1 --min-samples 0 --no-plots -o " + out.string();
+    auto r = run_trnkit(args + " --platform first");
+    ASSERT_EQ(r.code, 0) << r.output;
+    const auto before = fs::last_write_time(out / "bench.json");
+    r = run_trnkit(args + " --platform \"$(printf 'tx2\\377')\"");  // printf: /bin/sh has no $'...'
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_NE(r.output.find("--platform 'tx2\\xff': byte 4 is not UTF-8"), std::string::npos) << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+    ASSERT_TRUE(fs::exists(out / "bench.json")) << "the previous run's files were removed";
+    EXPECT_EQ(fs::last_write_time(out / "bench.json"), before);
+    EXPECT_EQ(read_json(out / "bench.json")["rows"][0]["platform"], "first");
+    fs::remove_all(out), fs::remove_all(sysfs);
+}
+
 TEST(EnergySampleCli, NvmlAndListing) {
     const fs::path log = temp("trn_sample_nvml.log");
     auto r = run_trnkit("energy sample --source nvml:0 --nvml-lib " + std::string(FAKE_NVML) + " --period-ms 5 --duration-s 0.1 -o " + log.string());

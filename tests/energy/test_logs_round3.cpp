@@ -11,7 +11,7 @@
 #include <fstream>
 
 #include "../cli/cli_process.hpp"
-#include "pi_pmic.hpp"
+#include "sources/raspberry_pi/pi_pmic.hpp"
 #include "log_checks.hpp"
 #include "trn/energy/integrate.hpp"
 #include "trn/energy/power_sampler.hpp"
@@ -209,7 +209,7 @@ TEST(EnergyCounters, UnitsFromTheNameAndWrapsAtTheStatedRange) {
     // kWh, Wh, mWh and J
     EXPECT_NEAR(joules(parse_power_log("time_s,energy_kWh\n0,1.0\n3600,1.1\n7200,1.2\n", "k.csv")), 0.2 * 3.6e6, 1e-6);
     EXPECT_NEAR(joules(parse_power_log("time_s,Energy (Wh)\n0,2\n36,3\n72,4\n", "w.csv")), 7200, 1e-9);
-    EXPECT_NEAR(joules(parse_power_log("time_s,energy_mWh\n0,2\n36,3\n72,5\n", "m.csv")), 3 * 3.6, 1e-9);
+    EXPECT_NEAR(joules(parse_power_log("time_s,energy_mWh\n0,2\n3.6,3\n7.2,5\n", "m.csv")), 3 * 3.6, 1e-9);  // 1 W, then 2 W
     EXPECT_NEAR(joules(parse_power_log("time_s,pkg_joules\n0,100\n1,112\n2,125\n", "j.csv")), 25, 1e-9);
     // a counter running backwards is refused naming the line and the option
     const std::string back = "time_s,energy_uj\n0,262000000000\n1,262010000000\n2,5000000\n3,15000000\n";
@@ -227,6 +227,24 @@ TEST(EnergyCounters, UnitsFromTheNameAndWrapsAtTheStatedRange) {
     EXPECT_NE(error_of("time_s,energy\n0,1\n1,2\n2,3\n").find("energy_unit="), std::string::npos);
     // a logger with a power column and a cumulative energy column still reads the power
     EXPECT_EQ(parse_power_log("time_s,power_W,cumulative_energy_wh\n0,5,0\n1,5,0.0014\n2,5,0.0028\n", "p.csv").kind, SampleKind::Instant);
+}
+
+// Item 4 for counters: the header's unit is evidence, tested against the source like a power unit.
+TEST(EnergyCounters, AHeaderUnitThatPutsTheWholeLogBeyondTheSourceIsRefusedNamingBoth) {
+    // a meter counting mJ under an energy_uj header: 10 W read as 0.01 W for a computer
+    std::string log = "time_s,energy_uj\n";
+    for (int k = 0; k <= 6; ++k) log += std::to_string(k * 0.5) + "," + std::to_string(1000000 + k * 5000) + "\n";
+    const std::string e = error_of(log);
+    EXPECT_NE(e.find("x.log: energy counter 'energy_uj' says uJ, but counted in uJ its rises are 0.01 to 0.01 W, less than"), std::string::npos) << e;
+    EXPECT_NE(e.find("(at least 0.5 W); in mJ they would be 10 to 10 W. Pass energy_unit=mJ if it counts mJ, or energy_unit=uJ"),
+              std::string::npos) << e;
+    // a unit given as an option is the user's word
+    EXPECT_NEAR(parse_power_log(log, "x.log", "auto", {{"energy_unit", "uJ"}}).w[0], 0.01, 1e-12);
+    EXPECT_NEAR(parse_power_log(log, "x.log", "auto", {{"energy_unit", "mJ"}}).w[0], 10, 1e-9);
+    // Wh under a kWh header: 100 W read as 100 kW, above what a computer or server node can draw
+    const std::string k = error_of("time_s,energy_kWh\n0,1\n36,2\n72,3\n");
+    EXPECT_NE(k.find("says kWh, but counted in kWh its rises are 100000 to 100000 W, more than"), std::string::npos) << k;
+    EXPECT_NE(k.find("in Wh they would be 100 to 100 W"), std::string::npos) << k;
 }
 
 TEST(EnergyCounters, LongFormCountersPerSeries) {

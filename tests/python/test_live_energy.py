@@ -150,3 +150,20 @@ def test_errors_name_the_source_and_the_mistake(tmp_path):
         trnkit.integrate_energy(tmp_path / "none.csv", w)
     with pytest.raises(TypeError, match="markers must be"):
         trnkit.integrate_energy(tmp_path / "none.csv", 3)
+
+
+def test_pi5_pmic_through_a_vcgencmd_given_by_path(tmp_path):
+    """pmic:vcgencmd runs the program vcgencmd= names (here a script standing in for a Pi 5's):
+    each poll's watts are the sum of current x volts over the rails with both readings."""
+    fake = tmp_path / "vcgencmd"
+    fake.write_text("#!/bin/sh\n[ \"$1\" = pmic_read_adc ] || exit 2\n"
+                    "echo '     3V3_SYS_A current(1)=0.10000000A'\necho '     VDD_CORE_A current(7)=2.00000000A'\n"
+                    "echo '     3V3_SYS_V volt(9)=3.31002000V'\necho '     VDD_CORE_V volt(15)=0.80000000V'\n"
+                    "echo '     EXT5V_V volt(24)=5.14647000V'\n")
+    fake.chmod(0o700)
+    s = trnkit.PowerSampler("pmic:vcgencmd", period_s=0.02, vcgencmd=fake)
+    trace = s.sample(0.1)
+    assert len(trace) >= 2
+    np.testing.assert_allclose(trace.w, 2.0 * 0.8 + 0.1 * 3.31002, rtol=1e-12)
+    with pytest.raises(trnkit.Error, match="absolute path"):
+        trnkit.PowerSampler("pmic:vcgencmd", period_s=0.01, vcgencmd="vcgencmd").sample(0.02)

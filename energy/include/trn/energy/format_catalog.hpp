@@ -18,7 +18,7 @@ struct PowerLogFormat {
     std::string quirks;   // what the parser does about the format's known traps
 };
 
-// In power_log_formats() order: both come from energy/src/power_formats.def.
+// In power_log_formats() order: both come from energy/src/core/power_formats.def.
 const std::vector<PowerLogFormat>& power_log_format_catalog();
 // The catalog as text for a terminal.
 std::string format_catalog_text();

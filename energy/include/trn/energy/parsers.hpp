@@ -59,6 +59,11 @@ PowerTrace parse_rapl_tools_csv(std::string_view text, const std::string& name, 
 double parse_rapl_tools_total_energy(std::string_view text, const std::string& name);
 // `perf stat -a -e power/energy-pkg/ -x, -I ms`: joules per interval -> interval-mean watts.
 PowerTrace parse_perf_stat(std::string_view text, const std::string& name, const ParseOptions& options = {});
+// likwid-perfctr timeline mode (-t): rows "<group> <count> <threads> <runtime> <values...>",
+// metric-major; likwid's '# GID|...' header names the metrics. Options: metric (NAME, or N without
+// the header; default Power [W]), group (one group's rows when likwid switched groups).
+PowerTrace parse_likwid_timeline(std::string_view text, const std::string& name, const ParseOptions& options = {});
+bool looks_like_likwid_timeline(std::string_view text);
 // Records of "Timestamp: <date>" + hwmon "curr1_input: mA" / "in1_input: mV" lines.
 PowerTrace parse_hwmon_records(std::string_view text, const std::string& name, const ParseOptions& options = {});
 // powerstat (vmstat-like table "Time User ... Watts", rows "HH:MM:SS ... W" until the "--------"

@@ -95,6 +95,7 @@ std::string detect_power_log_format(std::string_view input, const std::string& n
             text::fail(name, line.number, "a rapl-tools summary (power.log), not a power trace; it holds only the run's total energy");
     if (l.find("----vbat") != std::string_view::npos || l.find("vin:") != std::string_view::npos)
         text::fail(name, lines[first].number, "free-text charger log with no time stamps: no power trace can be built from it");
+    if (looks_like_likwid_timeline(input)) return "likwid-timeline";
     const auto fields = text::split(l, ',');
     bool all_numbers = fields.size() == 5;
     for (auto f : fields) all_numbers = all_numbers && text::to_number(f).has_value();
@@ -165,6 +166,8 @@ PowerTrace parse_power_log(std::string_view input, const std::string& name, cons
             throw Error(name + ": option time_uncertainty_s='" + it->second + "' must be a number of seconds in [0, 10]");
         rest.erase(it);
     }
+    // The memory budget before anything splits a row (JSON is parsed whole, never split in fields).
+    if (!(format == "scaphandre" || (format == "auto" && looks_like_json(input)))) text::check_row_widths(input, name);
     PowerTrace tr = parse_in_format(input, name, format, rest);
     if (zone) apply_time_zone(tr, *zone);
     if (uncertainty) {

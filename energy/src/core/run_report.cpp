@@ -11,6 +11,7 @@
 
 #include "sha256.hpp"
 #include "text_input.hpp"
+#include "trn/energy/label_check.hpp"
 #include "trn/io/input_file.hpp"
 #include "trn/error.hpp"
 #include "trn/io/provenance.hpp"
@@ -84,6 +85,7 @@ void refuse_no_frame_inside(const PowerTrace& trace, const RunEnergy& run, Align
 
 RunReport integrate_run(const PowerTrace& trace, const MarkerFile& markers, const IntegrateRequest& q) {
     validate_trace(trace);
+    if (!q.platform.empty()) check_label(q.platform, "platform");
     RunReport r;
     r.platform = q.platform.empty() ? default_platform(markers) : q.platform;
     r.log_format = trace.format, r.log_quantity = trace.quantity, r.log_notes = trace.notes;
@@ -249,6 +251,8 @@ RunReport parse_run_report_json(const std::string& text, const std::string& name
     } catch (const json::exception& e) {
         throw Error(name + ": run report field missing or of the wrong type (" + e.what() + ")");
     }
+    // A report edited by hand reaches compare's tables and terminal: its label obeys the same rule.
+    check_label(r.platform, name + ": platform");
     return r;
 }
 

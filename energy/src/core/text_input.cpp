@@ -4,6 +4,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 
 #include "trn/io/input_file.hpp"
 
@@ -186,6 +187,29 @@ std::optional<double> parse_datetime(std::string_view s, bool* zone_known) {
 
 void fail(const std::string& source, std::size_t line, const std::string& why) {
     throw Error(source + ":" + std::to_string(line) + ": " + why);
+}
+
+void check_row_widths(std::string_view input, const std::string& name) {
+    std::size_t line = 1, commas = 0, semicolons = 0, tabs = 0, tokens = 0;
+    bool after_space = true;
+    for (std::size_t i = 0; i <= input.size(); ++i) {
+        const char c = i < input.size() ? input[i] : '\n';
+        if (c != '\n') {
+            commas += c == ',', semicolons += c == ';', tabs += c == '\t';
+            const bool space = std::isspace(static_cast<unsigned char>(c)) != 0;
+            tokens += !space && after_space;
+            after_space = space;
+            continue;
+        }
+        const std::size_t widest = std::max({commas + 1, semicolons + 1, tabs + 1, tokens});
+        if (widest > kMaxFieldsPerRow) {
+            char gb[32];
+            std::snprintf(gb, sizeof gb, "%.1f", static_cast<double>(widest) * 32 / 1e9);
+            fail(name, line, "a row of " + std::to_string(widest) + " fields, more than the " + std::to_string(kMaxFieldsPerRow) +
+                                 " a log row may have (splitting it would take about " + gb + " GB of memory); not a power log, or a broken one");
+        }
+        ++line, commas = semicolons = tabs = tokens = 0, after_space = true;
+    }
 }
 
 // The one open point of every energy input (power logs, markers, run reports): a regular file of

@@ -567,6 +567,11 @@ PowerTrace parse_ina219_csv(std::string_view input, const std::string& name, con
         std::vector<std::optional<double>> start;
         std::size_t wraps = 0;
         out = series::counter_to_power(out, series_keys.size(), range_uj * 1e-6, name, energy.name, start, wraps, b);
+        if (!o.text("energy_unit")) {  // a unit read from the header is tested against the source
+            std::vector<double> w;
+            for (const auto& x : out) w.push_back(x.v);
+            check_energy_unit_against_source(name, energy.name, energy.scale, w, b.power_source());
+        }
         b.trace().kind = SampleKind::IntervalMean;
         for (const auto& st : start)
             if (st && (!b.trace().first_interval_start || *st < *b.trace().first_interval_start)) b.trace().first_interval_start = st;

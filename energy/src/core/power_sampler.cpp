@@ -7,7 +7,7 @@
 #include <chrono>
 #include <thread>
 
-#include "pi_pmic.hpp"
+#include "sources/raspberry_pi/pi_pmic.hpp"
 #include "trn/energy/nvml_sampler.hpp"
 #include "trn/energy/sysfs_sampler.hpp"
 #include "trn/error.hpp"

@@ -42,6 +42,14 @@ std::optional<double> parse_datetime(std::string_view s, bool* zone_known = null
 
 [[noreturn]] void fail(const std::string& source, std::size_t line, const std::string& why);
 
+// Most fields one row of a text log may split into. A field costs 16 to 40 bytes once split, so a
+// 240 MB header of 126 M columns would take 2 to 5 GB before any parser could say it is not a log;
+// real logs have at most a few hundred columns (a jtop CSV of a 12-core Orin: about 40).
+constexpr std::size_t kMaxFieldsPerRow = std::size_t{1} << 16;
+// Refuses, before anything splits it, the first line of `input` that ',', ';', tab or runs of
+// whitespace would cut into more than kMaxFieldsPerRow fields: "NAME:LINE: a row of N fields ...".
+void check_row_widths(std::string_view input, const std::string& name);
+
 // The whole file as text, refusing one larger than max_bytes and anything but a regular file: a
 // device such as /dev/zero or a FIFO given as an input would otherwise be read (or waited on) for
 // ever. Errors name the path (io::read_input_file).

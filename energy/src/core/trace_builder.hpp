@@ -49,6 +49,36 @@ inline void check_power_unit_against_source(const std::string& file, const std::
     }
 }
 
+// The same test for an energy counter whose unit came from its header ("energy_uj" counting
+// mJ): `w` are the interval-mean powers its rises give in that unit. When all of them lie below
+// the source's floor or above its cap while another energy unit would put them in range, the log
+// is refused naming both readings and energy_unit=.
+inline void check_energy_unit_against_source(const std::string& file, const std::string& column, double scale, const std::vector<double>& w,
+                                             const PowerSource& src) {
+    if (w.empty()) return;
+    double lo = std::abs(w.front()), hi = lo;
+    for (double v : w) lo = std::min(lo, std::abs(v)), hi = std::max(hi, std::abs(v));
+    static const std::pair<const char*, double> units[] = {{"uJ", 1e-6}, {"mJ", 1e-3}, {"J", 1}, {"mWh", 3.6}, {"Wh", 3600}, {"kWh", 3.6e6}};
+    auto fits = [&](double s) { return hi * s / scale >= src.min_w && hi * s / scale <= src.max_w; };
+    if (!(hi < src.min_w || lo > src.max_w)) return;  // some interval within what the source draws
+    const char* said = "?";
+    for (const auto& [u, s] : units)
+        if (s == scale) said = u;
+    const std::pair<const char*, double>* best = nullptr;
+    for (const auto& c : units)
+        if (c.second != scale && fits(c.second) && (!best || std::abs(std::log10(c.second / scale)) < std::abs(std::log10(best->second / scale))))
+            best = &c;
+    if (!best) return;
+    char buf[700];
+    std::snprintf(buf, sizeof buf,
+                  "%s: energy counter '%s' says %s, but counted in %s its rises are %g to %g W, %s than %s %s (%s %g W); in %s they would be "
+                  "%g to %g W. Pass energy_unit=%s if it counts %s, or energy_unit=%s to keep the header's unit (source= names another kind of device)",
+                  file.c_str(), column.c_str(), said, said, lo, hi, hi < src.min_w ? "less" : "more", src.description.c_str(),
+                  hi < src.min_w ? "draws" : "can draw", hi < src.min_w ? "at least" : "at most", hi < src.min_w ? src.min_w : src.max_w, best->first,
+                  lo * best->second / scale, hi * best->second / scale, best->first, best->first, said);
+    throw Error(buf);
+}
+
 class TraceBuilder {
 public:
     TraceBuilder(std::string source, std::string format) {

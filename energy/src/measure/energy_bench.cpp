@@ -7,6 +7,7 @@
 
 #include "sha256.hpp"
 #include "trn/energy/background_sampler.hpp"
+#include "trn/energy/label_check.hpp"
 #include "trn/energy/parsers.hpp"
 #include "trn/energy/stats.hpp"
 #include "trn/error.hpp"
@@ -18,6 +19,7 @@ namespace trn::energy {
 BenchResult run_energy_bench(PowerSampler& sampler, const std::vector<BenchTarget>& targets, const BenchConfig& c) {
     if (targets.empty()) throw Error("energy bench: no backend to run");
     if (c.calls_per_frame < 1) throw Error("energy bench: calls per frame must be at least 1");
+    check_label(c.platform, "energy bench: platform");  // before the run: it is written into every report after it
     BenchResult res;
     res.sampler = sampler.describe();
     res.period_s = c.period_s;

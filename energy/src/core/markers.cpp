@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "text_input.hpp"
+#include "trn/energy/label_check.hpp"
 #include "trn/io/input_file.hpp"
 
 namespace trn::energy {
@@ -66,6 +67,7 @@ MarkerFile parse_minimal(const std::vector<text::Line>& lines, std::size_t heade
 
 MarkerFile parse_markers(std::string_view input, const std::string& name) {
     input = io::strip_bom(input);  // a UTF-8 byte order mark (a file saved by a spreadsheet or editor)
+    text::check_row_widths(input, name);  // the memory budget before any row is split
     const auto lines = text::split_lines(input);
     for (std::size_t i = 0; i < lines.size(); ++i) {
         const auto s = text::trim(lines[i].text);
@@ -79,10 +81,12 @@ MarkerFile parse_markers(std::string_view input, const std::string& name) {
     for (auto tok : text::split_ws(lines[0].text.substr(18))) {
         const auto eq = tok.find('=');
         if (eq == std::string_view::npos) text::fail(name, 1, "header token '" + io::quote_input(tok) + "' is not key=value");
-        // Header values reach reports, plots and the terminal (platform=...): no escape sequences.
-        for (const char c : tok)
-            if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
-                text::fail(name, 1, "header token '" + io::quote_input(tok) + "' holds a control character");
+        // Header values reach reports, plots and the terminal (platform=...): UTF-8, no escape sequences.
+        try {
+            check_label(tok, "header token");
+        } catch (const Error& e) {
+            text::fail(name, 1, e.what());
+        }
         m.meta[std::string(tok.substr(0, eq))] = std::string(tok.substr(eq + 1));
     }
     if (lines.size() < 2 || text::trim(lines[1].text) != kHeader) text::fail(name, 2, "expected the column header '" + std::string(kHeader) + "'");

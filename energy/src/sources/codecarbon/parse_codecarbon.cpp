@@ -43,6 +43,7 @@ double RunSummaries::machine_energy_j(const std::string& machine) const {
 }
 
 RunSummaries parse_codecarbon_runs(std::string_view input, const std::string& name, const ParseOptions& options) {
+    text::check_row_widths(input, name);  // the memory budget before any row is split
     OptionReader o(options, name + " (codecarbon)", {});
     const auto lines = text::split_lines(input);
     std::size_t hi = 0;
