@@ -155,7 +155,7 @@ std::string gp_number(double v) {
 }
 
 PlotFiles plot_run(const std::string& folder, const std::vector<LocalizationRow>& rows, const LocalizationSummary& s, GrayView map,
-                   double mpp, const std::string& title, const ReferenceTrack& reference) {
+                   double mpp, const std::string& title, const ReferenceTrack& reference, const std::string& odometry_title) {
     // gnuplot runs in `folder` and the script names only these fixed files; the title (from a
     // flight.json or an option) enters only as a gnuplot_string.
     const std::string raw = "map_plot.gray", data = "plot_data.tsv";
@@ -204,7 +204,7 @@ PlotFiles plot_run(const std::string& folder, const std::vector<LocalizationRow>
        << "plot " << gnuplot_string(raw) << " binary array=(" << w << "," << h << ") format='%uchar' dx=" << px_m << " dy=" << px_m
        << " origin=(0,0) flipy with image notitle, \\\n"
        << "  " << gnuplot_string(data) << (truth ? " using 2:3 with lines lw 3 lc rgb '#1a9850' title 'ground truth', \\\n  ''" : "")
-       << " using 4:5 with lines lw 2 lc rgb '#d73027' title 'visual odometry', \\\n"
+       << " using 4:5 with lines lw 2 lc rgb '#d73027' title " << gnuplot_string(odometry_title) << ", \\\n"
        << "  '' using 6:7 with lines lw 2 lc rgb '#4575b4' title 'DPC-PFL estimate'"
        << (has_reference ? ", \\\n  '' using 10:11 with points pt 7 ps 1.2 lc rgb '#fdae61' title " + gnuplot_string(reference.title) : std::string())
        << "\n";
@@ -220,7 +220,7 @@ PlotFiles plot_run(const std::string& folder, const std::vector<LocalizationRow>
        << "ao = " << gp_number(s.odometry_error_slope_m_per_km) << "\nbo = " << gp_number(s.odometry_error_intercept_m) << "\n"
        << "af = " << gp_number(s.filter_error_slope_m_per_km) << "\nbf = " << gp_number(s.filter_error_intercept_m) << "\n"
        << "fo(x) = ao*x + bo\nff(x) = af*x + bf\n"
-       << "plot " << gnuplot_string(data) << " using 1:9 with lines lw 2 lc rgb '#d73027' title 'visual odometry', \\\n"
+       << "plot " << gnuplot_string(data) << " using 1:9 with lines lw 2 lc rgb '#d73027' title " << gnuplot_string(odometry_title) << ", \\\n"
        << "  '' using 1:8 with lines lw 2 lc rgb '#4575b4' title 'DPC-PFL', \\\n"
        << "  fo(x) with lines dt 2 lw 2 lc rgb '#d73027' title sprintf('odometry trend %.1f m/km', ao), \\\n"
        << "  ff(x) with lines dt 2 lw 2 lc rgb '#4575b4' title sprintf('filter trend %.1f m/km', af)\n";

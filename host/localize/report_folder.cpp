@@ -66,7 +66,8 @@ void write_localization_report(const LocalizationResult& result, const std::stri
        << "/summary.json\nper-step CSV: " << folder << "/localization.csv\n";
     for (const auto& [name, text] : r.files) os << name << ": " << folder << "/" << name << "\n";
     if (r.plots) {
-        const PlotFiles plots = plot_run(folder, result.rows, result.summary, map, metres_per_pixel, r.plot_title, r.reference);
+        const std::string odometry = result.run.visual_odometry ? "visual odometry" : "odometry (" + r.odometry + ")";
+        const PlotFiles plots = plot_run(folder, result.rows, result.summary, map, metres_per_pixel, r.plot_title, r.reference, odometry);
         os << "plots: " << plots.trajectory_png << "\n";
         if (!plots.error_png.empty()) os << "       " << plots.error_png << "\n";  // none without ground truth
     }

@@ -52,9 +52,11 @@ struct ReferenceTrack {
 
 // Draws both plots into `folder` with gnuplot (run as a subprocess). The map is drawn under the
 // trajectories, downscaled to at most 1000 pixels. Throws trn::Error when gnuplot is missing or fails
-// (this is the only step that needs it).
+// (this is the only step that needs it). `odometry_title`: the odometry's legend (what the run used:
+// "visual odometry", "odometry (folder)" ...).
 PlotFiles plot_run(const std::string& folder, const std::vector<LocalizationRow>& rows, const LocalizationSummary& summary,
-                   GrayView map, double metres_per_pixel, const std::string& title, const ReferenceTrack& reference = {});
+                   GrayView map, double metres_per_pixel, const std::string& title, const ReferenceTrack& reference = {},
+                   const std::string& odometry_title = "odometry");
 
 }  // namespace trn::localize
 TRN_API_END
