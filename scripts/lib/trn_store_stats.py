@@ -331,15 +331,15 @@ def kld_cost(root, ours, diss):
 ODOMETRY_STUDIES = ("odometry", "odometry-wind", "odometry-visual", "odometry-long")
 
 
-def within_50m(root, merged):
+def within_50m(root, merged, profile="ours"):
     """3.6: "Particle filter localization was able to keep error values in an around 50-meter range"."""
     lines = ["**Section 3.6's \"error values in an around 50-meter range\": flights whose filter error stays near 50 m "
-             "(the store keeps each flight's mean and final error, not its largest)**", "",
+             f"(profile {profile}; the store keeps each flight's mean and final error, not its largest)**", "",
              "| Study | Flights | Filter mean error <= 50 m | Filter final error <= 50 m | Largest filter mean error m | "
              "Odometry mean error <= 50 m |", "| --- | ---: | ---: | ---: | ---: | ---: |"]
     tails = []
     for study in ODOMETRY_STUDIES:
-        folder, head = merged(study, "ours")
+        folder, head = merged(study, profile)
         if head is None:
             continue
         prov, jobs = store_jobs(root, folder)
@@ -350,5 +350,32 @@ def within_50m(root, merged):
         odo_ok = sum(1 for x in r if x["odometry_mean_error_m"] <= 50)
         worst = max(x["filter_mean_error_m"] for x in r)
         lines.append(f"| {study} | {n} | {mean_ok} of {n} | {final_ok} of {n} | {worst:.2f} | {odo_ok} of {n} |")
-        tails.append(f"Store: ours; {n} jobs of {prov['jobs']} ({prov['results_store']}, configuration {prov['config_hash']}).")
+        tails.append(f"Store: {profile}; {n} jobs of {prov['jobs']} ({prov['results_store']}, configuration {prov['config_hash']}).")
     return "\n".join(lines) + "\n\n" + "\n".join(tails) + "\n"
+
+
+def job_cost(root, ours, diss):
+    """What a conversion flight costs per function (the stored wall times) and how often it re-seeds."""
+    runs = []
+    for profile, (folder, _) in (("ours", ours), ("dissertation", diss)):
+        prov, jobs = store_jobs(root, folder)
+        runs.append((profile, prov, jobs))
+    functions = list(runs[0][1]["config"]["conversions"])
+    lines = ["**What a conversion flight costs: mean job wall time per function (one job a core on the shared 2-core VMs) "
+             "and the most re-initialisations in one flight**", "",
+             "| Function | Wall s: ours | Wall s: dissertation | Most re-initialisations: ours | Most re-initialisations: dissertation |",
+             "| --- | ---: | ---: | ---: | ---: |"]
+    for f in functions + ["all"]:
+        cells = [f]
+        for _, _, jobs in runs:
+            sel = [j for j in jobs if f == "all" or j["params"]["conversion"] == f]
+            cells.append(f"{sum(j['wall_s'] for j in sel) / len(sel):.2f}" if sel else "-")
+        for _, _, jobs in runs:
+            sel = [j["result"].get("reinitialisations") for j in jobs if f == "all" or j["params"]["conversion"] == f]
+            sel = [x for x in sel if x is not None]
+            cells.append(f"{max(sel)}" if sel else "-")
+        lines.append("| " + " | ".join(cells) + " |")
+    hours = " and ".join(f"{sum(j['wall_s'] for j in jobs) / 3600:.1f} core-hours ({profile})" for profile, _, jobs in runs)
+    tails = [f"Store: {profile}; {len(jobs)} jobs of {prov['jobs']} ({prov['results_store']}, configuration {prov['config_hash']})."
+             for profile, prov, jobs in runs]
+    return "\n".join(lines) + f"\n\nThe whole sweep: {hours}.\n\n" + "\n".join(tails) + "\n"
