@@ -28,6 +28,14 @@ void add_experiment_command(CLI::App& app) {
                     "Flight and sampling studies: watch for a wrong lock, on or off (default: the profile's; ours on, dissertation off); "
                     "part of the configuration")
         ->check(CLI::IsMember({"on", "off"}));
+    cmd->add_option("--max-particles", a->max_particles,
+                    "Flight studies: the KLD particle maximum (default: the profile's; ours 2000, dissertation a 100000 safety cap); "
+                    "part of the configuration")
+        ->check(CLI::Range(100, 1000000));
+    cmd->add_option("--kld-upper-quantile", a->kld_upper_quantile,
+                    "Flight studies: the KLD bound's upper quantile (0.9: z = +1.28, ours; 0.1: z = -1.28, the dissertation's reading); "
+                    "part of the configuration")
+        ->check(real_in(0, 1, Open::both));
     cmd->add_option("--results", a->results,
                     "Results store: one JSON line per finished job, appended atomically (default: results/NAME/PROFILE[-quick].jsonl; "
                     "'none': not written)");

@@ -7,7 +7,7 @@ namespace trn::cli {
 namespace {
 
 // One table for every command: a field has one flag wherever it appears.
-constexpr std::array<std::pair<const char*, const char*>, 41> kFlags{{
+constexpr std::array<std::pair<const char*, const char*>, 43> kFlags{{
     {"dataset", "--dataset"},
     {"flight.folder", "--dataset"},
     {"map", "--map"},
@@ -51,6 +51,8 @@ constexpr std::array<std::pair<const char*, const char*>, 41> kFlags{{
     {"out", "--out"},
     {"profile", "--profile"},
     {"lock_monitor", "--lock-monitor"},
+    {"max_particles", "--max-particles"},
+    {"kld_upper_quantile", "--kld-upper-quantile"},
     {"results", "--results"},
     {"resume", "--resume"},
 }};

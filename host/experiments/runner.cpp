@@ -98,6 +98,12 @@ std::string command_prefix(const ExperimentOptions& o, const std::string& out) {
     std::string profile;
     if (o.profile != "ours") profile += " --profile " + shell_word(o.profile);
     if (!o.lock_monitor.empty()) profile += " --lock-monitor " + shell_word(o.lock_monitor);
+    if (o.max_particles) profile += " --max-particles " + std::to_string(o.max_particles);
+    if (!std::isnan(o.kld_upper_quantile)) {
+        char text[48];
+        std::snprintf(text, sizeof text, " --kld-upper-quantile %.17g", o.kld_upper_quantile);
+        profile += text;
+    }
     if (!o.results.empty()) profile += " --results " + shell_word(o.results);
     if (o.resume) profile += " --resume";
     return "trnkit experiment " + o.study + (o.quick ? " --quick" : "") + " --seed " + std::to_string(o.seed) + radius + profile + " --backend " +
@@ -150,6 +156,22 @@ Json full_configuration(const Study& study, const ExperimentOptions& o) {
         config["lock_monitor"] = o.lock_monitor.empty() ? filter::profile_config(profile).lock.enabled : o.lock_monitor == "on";
     } else if (!o.lock_monitor.empty()) {
         throw Error("experiment " + o.study + ": `lock_monitor`: this study runs no particle filter (it scores poses only)");
+    }
+    // Part of the configuration when given (absent otherwise, so the stores of the profiles' own
+    // settings keep their hashes): the flight studies' KLD maximum and upper quantile.
+    if (o.max_particles || !std::isnan(o.kld_upper_quantile)) {
+        if (!config.contains("init_radius_m"))
+            throw Error("experiment " + o.study + ": `max_particles`, `kld_upper_quantile`: only the flight studies (conversion, robustness, odometry*)");
+        if (o.max_particles) {
+            if (o.max_particles < 100 || o.max_particles > 1000000)
+                throw Error("experiment: `max_particles` " + std::to_string(o.max_particles) + " must be in [100, 1000000]");
+            config["max_particles"] = o.max_particles;
+        }
+        if (!std::isnan(o.kld_upper_quantile)) {
+            if (!(o.kld_upper_quantile > 0 && o.kld_upper_quantile < 1))
+                throw Error("experiment: `kld_upper_quantile` " + std::to_string(o.kld_upper_quantile) + " must be in (0, 1)");
+            config["kld_upper_quantile"] = o.kld_upper_quantile;
+        }
     }
     if (!std::isnan(o.init_radius_m)) {  // part of the configuration: jobs of another radius are refused, not mixed
         if (!config.contains("init_radius_m"))
@@ -304,6 +326,12 @@ std::size_t run_experiment(const ExperimentOptions& o) {
     {
         std::string head = "Profile: " + config["profile"].get<std::string>();
         if (config.contains("lock_monitor")) head += std::string(", lock monitor ") + (config["lock_monitor"].get<bool>() ? "on" : "off");
+        if (config.contains("max_particles")) head += ", at most " + std::to_string(config["max_particles"].get<std::size_t>()) + " particles";
+        if (config.contains("kld_upper_quantile")) {
+            char q[32];
+            std::snprintf(q, sizeof q, "%g", config["kld_upper_quantile"].get<double>());
+            head += std::string(", KLD upper quantile ") + q;
+        }
         head += "; " + std::to_string(outputs.size()) + " of " + std::to_string(jobs.size()) + " jobs";
         if (from_store) head += " (" + std::to_string(from_store) + " from the results store " + store.path() + ", configuration " + store.hash() + ")";
         if (from_shared)

@@ -30,6 +30,8 @@ inline filter::FilterConfig study_filter(const Json& config) {
     filter::FilterConfig f = filter::profile_config(filter::parse_profile(config.value("profile", std::string("ours"))));
     f.update = kStudyUpdate;
     if (config.contains("lock_monitor")) f.lock.enabled = config.at("lock_monitor").get<bool>();
+    if (config.contains("max_particles")) f.max_particles = config.at("max_particles").get<std::size_t>();
+    if (config.contains("kld_upper_quantile")) f.kld_upper_quantile = config.at("kld_upper_quantile").get<double>();
     return f;
 }
 

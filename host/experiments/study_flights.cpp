@@ -79,6 +79,9 @@ Json fly(const Json& c, const std::string& preset_name, const std::string& conve
     if (plots) localize::plot_run(ctx.job_folder, r.rows, s, map->image.view(), map->metres_per_pixel, preset_name + " " + conversion);
     Json result = flight_result(s);
     result["particles_evaluated"] = s.mean_particles * s.steps;
+    std::size_t most = 0;  // does the particle maximum bind? the largest set of any step
+    for (const auto& row : r.rows) most = std::max(most, row.particles);
+    result["max_particles_step"] = most;
     if (visual_odometry) {
         const auto& counts = r.run.visual_odometry_counts;
         result["visual_odometry_steps"] = {{"features", counts.features}, {"phase", counts.phase}, {"lost", counts.lost}};

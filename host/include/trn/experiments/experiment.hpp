@@ -36,6 +36,10 @@ struct ExperimentOptions {
     std::string results;
     bool resume = false;         // skip the jobs the store holds for this configuration; merge from it too
     double init_radius_m = NAN;  // flight studies: particles start within this radius (m); NaN: the study's 300 m
+    // Flight studies, for the sensitivity to what the text leaves open (issue 47 item 5): the KLD
+    // particle maximum and the KLD upper quantile (0.9: z = +1.28, 0.1: z = -1.28); 0 / NaN: the profile's.
+    std::size_t max_particles = 0;
+    double kld_upper_quantile = NAN;
     bool quick = false;          // reduced but meaningful version (CI)
     bool list_jobs = false;      // print one command per job and exit
     bool list_ids_only = false;  // with list_jobs: print only the job ids, one a line (scripts/experiment-*)
