@@ -12,6 +12,7 @@
 
 #include "trn/error.hpp"
 #include "trn/io/atomic_file.hpp"
+#include "trn/io/outside_text.hpp"
 #include "trn/io/input_file.hpp"
 #include "trn/io/provenance.hpp"
 #include "trn/detail/angles.hpp"
@@ -234,7 +235,7 @@ void write_flight_info(const std::string& path, const FlightInfo& info) {
     if (info.frames) j["frames"] = info.frames;
     if (!info.latlon_source.empty()) j["latlon_source"] = info.latlon_source;
     io::add_provenance(j);
-    io::write_file_atomic(path, j.dump(2) + "\n");
+    io::write_file_atomic(path, io::json_text(j, 2));
 }
 
 namespace {
@@ -357,7 +358,7 @@ void AirWriter::write(const AirRecord& r, GrayView image, const std::vector<std:
         std::snprintf(buf, sizeof buf, kFormats[c], v);
         csv_ += buf;
     }
-    for (const std::string& e : extra) csv_ += "," + quote_if_needed(e);
+    for (const std::string& e : extra) csv_ += "," + quote_if_needed(io::utf8_replaced(e));  // outside text (a photo's name, EXIF)
     csv_ += "\n";
 }
 
