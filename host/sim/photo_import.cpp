@@ -69,6 +69,10 @@ std::vector<std::string> list_photos(const std::string& dir) {
         if (name.empty() || name[0] == '.') continue;
         std::error_code e2;
         if (it->is_directory(e2)) continue;  // sub-folders are not photos (nor searched)
+        // Its name goes into metadata.csv, which is read line by line: a newline there would split a row.
+        if (std::any_of(name.begin(), name.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; }))
+            throw FieldError("photos", dir + "/" + io::quote_input(name) + ": a photo name with a control character (a newline would break "
+                                                                          "metadata.csv's rows); rename the photo");
         names.push_back(name);
     }
     if (ec) throw FieldError("photos", dir + ": cannot list the folder (" + ec.message() + ")");
@@ -144,6 +148,11 @@ PhotoImportResult import_photos(const PhotoImportOptions& o, const std::function
         if (p.exif.model != first.exif.model || p.exif.make != first.exif.make)
             throw Error(o.photos + "/" + p.photo + ": taken with '" + io::quote_input(p.exif.make + " " + p.exif.model) + "', " + first.photo +
                         " with '" + io::quote_input(first.exif.make + " " + first.exif.model) + "'; import one camera's photos at a time");
+        // Frames are scored at the camera's one size: another size would be scored at the wrong scale.
+        if (p.exif.width != first.exif.width || p.exif.height != first.exif.height)
+            throw Error(o.photos + "/" + io::quote_input(p.photo) + ": " + std::to_string(p.exif.width) + "x" + std::to_string(p.exif.height) +
+                        " px, " + io::quote_input(first.photo) + " " + std::to_string(first.exif.width) + "x" + std::to_string(first.exif.height) +
+                        " px; one AIR folder has one camera size: import each size's photos separately");
         if (!same(p.exif.focal_length_mm, first.exif.focal_length_mm))
             throw Error(o.photos + "/" + p.photo + ": EXIF FocalLength " + num(p.exif.focal_length_mm) + " mm differs from " + first.photo + "'s " +
                         num(first.exif.focal_length_mm) + " mm (zoomed between photos); one AIR folder has one field of view");
