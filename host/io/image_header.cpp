@@ -34,6 +34,27 @@ std::optional<ImageSize> png_size(std::ifstream& f) {
     return ImageSize{be32(h + 16), be32(h + 20), 2, 0, "PNG"};
 }
 
+// A JPEG frame header (SOFn at `at`): length, precision, height, width, components (id, sampling
+// HV, table). A progressive frame (SOF2, 6, 10, 14) is decoded by libjpeg into a buffer of every
+// DCT coefficient of the image first, 2 bytes per coefficient: 2 B per pixel of each component at
+// its sampling (4:2:0 colour: 3 B/px), on top of the 2 B/px of the grey output and its copy.
+std::optional<ImageSize> jpeg_frame(std::ifstream& f, std::uint64_t at, unsigned char marker, std::uint32_t length) {
+    unsigned char h[8 + 3 * 255];
+    if (length < 8 || !read_at(f, at + 2, h, 8)) return std::nullopt;
+    const std::uint32_t components = h[7];
+    if (components == 0 || length < 8 + 3 * components || !read_at(f, at + 2, h, 8 + 3 * components)) return std::nullopt;
+    ImageSize size{be16(h + 5), be16(h + 3), 2, 0, "JPEG"};
+    if ((marker & 0x03) == 0x02) {  // progressive
+        unsigned h_max = 1, v_max = 1;
+        for (std::uint32_t c = 0; c < components; ++c) h_max = std::max(h_max, unsigned(h[9 + 3 * c] >> 4)), v_max = std::max(v_max, unsigned(h[9 + 3 * c] & 15));
+        double share = 0;  // of the full-size pixel count, summed over the components
+        for (std::uint32_t c = 0; c < components; ++c) share += double(h[9 + 3 * c] >> 4) * double(h[9 + 3 * c] & 15) / (double(h_max) * v_max);
+        size.decode_bytes_per_pixel += 2 * share;
+        size.format = "progressive JPEG";
+    }
+    return size;
+}
+
 // JPEG: segments FF xx [length] until a start-of-frame (SOF0..SOF15 but DHT C4, JPG C8, DAC CC):
 // length, precision, height, width.
 std::optional<ImageSize> jpeg_size(std::ifstream& f) {
@@ -55,7 +76,7 @@ std::optional<ImageSize> jpeg_size(std::ifstream& f) {
         const std::uint32_t length = be16(seg);
         if (length < 2) return std::nullopt;
         const bool sof = m[1] >= 0xC0 && m[1] <= 0xCF && m[1] != 0xC4 && m[1] != 0xC8 && m[1] != 0xCC;
-        if (sof) return length >= 7 ? std::optional<ImageSize>(ImageSize{be16(seg + 5), be16(seg + 3), 2, 0, "JPEG"}) : std::nullopt;
+        if (sof) return jpeg_frame(f, at, m[1], length);
         at += 2 + length;
     }
     return std::nullopt;
