@@ -16,6 +16,7 @@
 #include "trn/io/input_file.hpp"
 #include "trn/io/provenance.hpp"
 #include "trn/detail/angles.hpp"
+#include "trn/sim/geodesy.hpp"
 
 namespace trn::sim {
 namespace {
@@ -294,6 +295,7 @@ FlightInfo read_flight_info(const std::string& path) {
         if (j.contains("origin"))
             info.origin = GeoOrigin{real_field(j["origin"], "latitude_deg", -90, 90, Ends::closed, where + "origin."),
                                     real_field(j["origin"], "longitude_deg", -180, 180, Ends::closed, where + "origin.")};
+        if (info.origin) check_geo_origin(*info.origin, where + "origin");
         const auto& c = j.at("camera");
         info.camera = {int_field(c, "width", 2, 16384, where + "camera."), int_field(c, "height", 2, 16384, where + "camera."),
                        real_field(c, "hfov_deg", 1, 170, Ends::open_both, where + "camera.")};

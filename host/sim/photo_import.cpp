@@ -12,6 +12,7 @@
 #include "trn/io/input_file.hpp"
 #include "trn/io/output_folder.hpp"
 #include "trn/sim/air_format.hpp"
+#include "trn/sim/geodesy.hpp"
 
 namespace trn::sim {
 namespace {
@@ -111,6 +112,8 @@ PhotoImportResult import_photos(const PhotoImportOptions& o, const std::function
             throw FieldError("metres_per_pixel", "required with `map` " + o.map + " (not a GeoTIFF, whose georeference would give it)");
         map_file = fs::relative(fs::absolute(o.map), fs::absolute(fs::path(o.out)).lexically_normal(), ec).generic_string();
         if (ec || map_file.empty()) throw FieldError("map", o.map + ": no path from " + o.out + " to it (" + ec.message() + ")");
+        if (o.map_origin)
+            if (const std::string why = geo_origin_problem(*o.map_origin); !why.empty()) throw FieldError("map_origin", why);
     } else if (o.metres_per_pixel > 0 || o.map_origin) {
         throw FieldError("map", "required with `" + std::string(o.map_origin ? "map_origin" : "metres_per_pixel") + "` (they describe the map)");
     }
@@ -187,6 +190,11 @@ PhotoImportResult import_photos(const PhotoImportOptions& o, const std::function
     if (ties) res.notes.push_back(std::to_string(ties) + " photos share their EXIF time with the one before; those are ordered by file name");
     const double t0 = photos.front().exif.time_s, span = photos.back().exif.time_s - t0;
     res.fps = photos.size() > 1 && span > 0 ? double(photos.size() - 1) / span : 1.0;
+    // flight.json's fps is at most 1000 (localize refuses more): a burst 0.1 ms apart would write one
+    // no reader takes. Refused here, before anything is written.
+    if (res.fps > 1000)
+        throw Error(o.photos + ": the " + std::to_string(photos.size()) + " photos span " + num(span, "%.3g") + " s by their EXIF times: " +
+                    num(res.fps, "%.0f") + " photos/s, more than the 1000 an AIR folder may have (a burst?); import photos at least 1 ms apart");
     if (!rotated.empty())
         res.notes.push_back(std::to_string(rotated.size()) + " photos have an EXIF Orientation other than 1 (first: " + rotated.front() +
                             "); their pixels were used as stored");

@@ -397,3 +397,29 @@ TEST_F(PhotoCli, LocalizePhotosChecksTheMapAndStartBeforeReplacingTheDataset) {
         EXPECT_EQ(read_text(path("air/metadata.csv")), before) << args << ": the dataset was replaced before the error";
     }
 }
+
+// Issue 45, class 6: --map-origin at a pole (the local projection divides by cos(latitude)):
+// 90,180 was accepted and gave longitudes of 6e13 degrees; refused by the option, naming why.
+TEST_F(PhotoCli, MapOriginAtAPoleIsRefused) {
+    const auto r = run_trnkit(import_args() + " --map " + path("map.png") + " --mpp 0.5 --map-origin 90,180");
+    EXPECT_NE(r.code, 0) << r.output;
+    EXPECT_HAS(r.output, "--map-origin");
+    EXPECT_HAS(r.output, "latitude 90 deg is not within +-85 deg");
+    EXPECT_FALSE(fs::exists(path("air")));
+}
+
+// Issue 45, class 6: burst photos 0.1 ms apart wrote an fps (10000) that localize then refused;
+// the import refuses it first, saying why.
+TEST_F(PhotoCli, BurstPhotosTooCloseInTimeAreRefusedAtImport) {
+    for (int i = 0; i < 5; ++i) {
+        const std::string name = path("photos/IMG_" + std::to_string(100 + i) + ".jpg");
+        const cv::Mat pixels = cv::imread(name);
+        trn::test::write_test_photo(name, pixels, TestExif{}.set("Exif.Photo.DateTimeOriginal", "2020:05:01 10:00:00")
+                                                      .set("Exif.Photo.SubSecTimeOriginal", "000" + std::to_string(i)));
+    }
+    const auto r = run_trnkit(import_args());
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_HAS(r.output, "the 5 photos span 0.0004 s by their EXIF times: ");
+    EXPECT_HAS(r.output, " photos/s, more than the 1000 an AIR folder may have (a burst?)");
+    EXPECT_FALSE(fs::exists(path("air")));
+}
