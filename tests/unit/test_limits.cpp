@@ -176,7 +176,8 @@ TEST_F(LimitFiles, ProgressiveJpegCountsItsCoefficientBuffer) {
     const ImageSize baseline = check_image_file(path("baseline.jpg"));
     EXPECT_EQ(baseline.decode_bytes_per_pixel, 2);
     // A real progressive JPEG still loads, measured as one.
-    const cv::Mat img = test::textured_image(64, 48, 4).mat();
+    const test::PaddedGray gray = test::textured_image(64, 48, 4);  // mat() wraps its pixels: kept alive
+    const cv::Mat img = gray.mat();
     ASSERT_TRUE(cv::imwrite(path("real.jpg"), img, {cv::IMWRITE_JPEG_PROGRESSIVE, 1}));
     EXPECT_STREQ(check_image_file(path("real.jpg")).format, "progressive JPEG");
     EXPECT_EQ(load_gray(path("real.jpg")).width, 64);
