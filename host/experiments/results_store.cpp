@@ -23,7 +23,7 @@ namespace fs = std::filesystem;
 
 std::string config_hash(const Json& config) {
     std::uint64_t h = 0xcbf29ce484222325ull;
-    for (const unsigned char c : config.dump(-1, ' ', false, Json::error_handler_t::replace)) h = (h ^ c) * 0x100000001b3ull;
+    for (const unsigned char c : io::json_line(config)) h = (h ^ c) * 0x100000001b3ull;
     char text[17];
     std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(h));
     return text;
@@ -139,7 +139,7 @@ std::optional<StoreLine> parse_store_line(std::string_view text, const std::stri
     if (j.contains("wall_s")) {
         const Json& w = j.at("wall_s");
         if (!w.is_number() || !std::isfinite(w.get<double>()) || w.get<double>() < 0)
-            throw Error(where + ": field wall_s is " + (w.is_number() ? io::quote_input(w.dump()) : std::string(type_name(w))) +
+            throw Error(where + ": field wall_s is " + (w.is_number() ? io::quote_input(io::json_line(w)) : std::string(type_name(w))) +
                         ", not a number of seconds >= 0");
         line.wall_s = w.get<double>();
     }

@@ -171,9 +171,9 @@ Json checked_stored_output(const ResultsStore& store, const Json& job) {
     const std::string id = job.at("id").get<std::string>();
     Json out = store.output(id);
     // Key order differs (the store keeps the id apart): compare unordered.
-    if (nlohmann::json::parse(out.at("params").dump()) != nlohmann::json::parse(job.dump()))
-        throw Error(store.where(id) + ": field params is " + io::quote_input(out.at("params").dump(), 200) + ", but job " + io::quote_input(id) +
-                    " of this study is " + io::quote_input(job.dump(), 200));
+    if (nlohmann::json::parse(io::json_line(out.at("params"))) != nlohmann::json::parse(io::json_line(job)))
+        throw Error(store.where(id) + ": field params is " + io::quote_input(io::json_line(out.at("params")), 200) + ", but job " + io::quote_input(id) +
+                    " of this study is " + io::quote_input(io::json_line(job), 200));
     out["params"] = job;
     return out;
 }
@@ -190,8 +190,8 @@ std::size_t run_experiment(const ExperimentOptions& o) {
     for (const Json& j : jobs) {
         const std::string id = j.at("id").get<std::string>();
         // Ids travel through dispatchers as one word and in comma lists (--job a,b): a study bug otherwise.
-        if (id.empty() || id.find_first_of(", \t\n") != std::string::npos) throw Error("experiment: job id " + j.at("id").dump() + " has a comma or blank");
-        if (!ids.insert(id).second) throw Error("experiment: duplicate job id " + j.at("id").dump());
+        if (id.empty() || id.find_first_of(", \t\n") != std::string::npos) throw Error("experiment: job id " + io::json_line(j.at("id")) + " has a comma or blank");
+        if (!ids.insert(id).second) throw Error("experiment: duplicate job id " + io::json_line(j.at("id")));
     }
 
     const std::string out = o.out.empty() ? "experiments/" + o.study + (profile == filter::Profile::Dissertation ? "-dissertation" : "") +
@@ -251,8 +251,8 @@ std::size_t run_experiment(const ExperimentOptions& o) {
         if (!fs::exists(path)) return false;
         const Json done = read_json(path);
         if (done.at("config") != config)
-            throw Error("experiment: " + path + " was made with another configuration (" + done.at("config").dump() + ", asked for " +
-                        config.dump() + "); use another `out` or delete it");
+            throw Error("experiment: " + path + " was made with another configuration (" + io::json_line(done.at("config")) + ", asked for " +
+                        io::json_line(config) + "); use another `out` or delete it");
         return true;
     };
 

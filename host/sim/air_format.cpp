@@ -120,7 +120,7 @@ struct ViewBuffer : std::streambuf {
 };
 
 // A JSON value as an error message shows it: at most kMaxQuotedChars of its text.
-std::string shown(const nlohmann::json& v) { return io::quote_input(v.dump()); }
+std::string shown(const nlohmann::json& v) { return io::quote_input(io::json_line(v)); }
 
 // Why value v of column c is implausible ("" when it is fine).
 std::string implausible(std::size_t c, double v) {

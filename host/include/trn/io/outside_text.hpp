@@ -46,11 +46,20 @@ void replace_invalid_utf8(Json& j) {
 }
 
 // The text of a JSON file trnkit writes (with a final newline): `indent` as dump() takes it, outside
-// text made valid UTF-8 first, so this never throws on it.
+// text made valid UTF-8 first, so this never throws on it. The only call of dump() in host/, apps/,
+// capi/ and python/ (security.json_text_only).
 template <class Json>
 std::string json_text(Json j, int indent = -1) {
     replace_invalid_utf8(j);
     return j.dump(indent) + "\n";
+}
+
+// The same as one line without the newline: for a message, a comparison or a hash.
+template <class Json>
+std::string json_line(const Json& j) {
+    std::string text = json_text(j);
+    text.pop_back();
+    return text;
 }
 
 }  // namespace trn::io
