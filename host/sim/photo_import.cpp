@@ -93,42 +93,12 @@ double known_sensor_width_mm(const std::string& model) {
     return NAN;
 }
 
-PhotoImportResult import_photos(const PhotoImportOptions& o, const std::function<void(std::size_t, std::size_t)>& progress) {
-    // Options first: a missing one costs nothing.
-    if (o.out.empty()) throw FieldError("out", "required (the AIR folder to write)");
-    if (!(o.altitude_agl_m > 0 && o.altitude_agl_m <= 20000))
-        throw FieldError("altitude_agl_m", std::isnan(o.altitude_agl_m)
-                                               ? "required: the camera's height above the ground in metres (EXIF GPS altitude is above sea "
-                                                 "level and a camera's GPS altitude is unreliable, so trnkit never takes it from the photos)"
-                                               : num(o.altitude_agl_m) + " m must be in (0, 20000]");
-    if (o.sensor_width_mm != 0 && !(o.sensor_width_mm > 0 && o.sensor_width_mm <= 100))
-        throw FieldError("sensor_width_mm", num(o.sensor_width_mm) + " mm must be in (0, 100]");
-    if (o.width < 16 || o.width > 16384) throw FieldError("width", std::to_string(o.width) + " px must be in [16, 16384]");
-    std::string map_file;
-    if (!o.map.empty()) {
-        std::error_code ec;
-        if (!fs::is_regular_file(o.map, ec)) throw FieldError("map", o.map + ": not a file");
-        if (!(o.metres_per_pixel > 0) && !io::has_geotiff_extension(o.map))
-            throw FieldError("metres_per_pixel", "required with `map` " + o.map + " (not a GeoTIFF, whose georeference would give it)");
-        map_file = fs::relative(fs::absolute(o.map), fs::absolute(fs::path(o.out)).lexically_normal(), ec).generic_string();
-        if (ec || map_file.empty()) throw FieldError("map", o.map + ": no path from " + o.out + " to it (" + ec.message() + ")");
-        if (o.map_origin)
-            if (const std::string why = geo_origin_problem(*o.map_origin); !why.empty()) throw FieldError("map_origin", why);
-    } else if (o.metres_per_pixel > 0 || o.map_origin) {
-        throw FieldError("map", "required with `" + std::string(o.map_origin ? "map_origin" : "metres_per_pixel") + "` (they describe the map)");
-    }
-
-    // Every photo's EXIF before anything is written.
-    const std::vector<std::string> names = list_photos(o.photos);
-    std::vector<ImportedPhoto> photos;
-    photos.reserve(names.size());
+PhotoImportResult check_photo_set(std::vector<ImportedPhoto> photos, const PhotoImportOptions& o) {
+    if (photos.empty()) throw FieldError("photos", o.photos + ": no photos in the folder");
     PhotoImportResult res;
     std::vector<std::string> rotated, without_gps;
-    for (const std::string& name : names) {
-        const std::string path = (fs::path(o.photos) / name).string();
-        ImportedPhoto p;
-        p.photo = name;
-        p.exif = io::read_photo_exif(path);
+    for (const ImportedPhoto& p : photos) {
+        const std::string path = (fs::path(o.photos) / p.photo).string();
         if (std::isnan(p.exif.time_s))
             throw Error(path + ": EXIF DateTimeOriginal is missing; import-photos orders the photos by it and times the flight with it");
         if (std::isnan(p.exif.focal_length_mm))
@@ -140,10 +110,9 @@ PhotoImportResult import_photos(const PhotoImportOptions& o, const std::function
                                      " (the photo is to be shown rotated or mirrored); trnkit does not rotate frames by it, since a camera "
                                      "looking down cannot tell which way is up. Give `ignore_orientation` to use the pixels as stored "
                                      "(the sensor's own orientation, which turns with the drone), or undo the rotation first");
-            rotated.push_back(name);
+            rotated.push_back(p.photo);
         }
-        if (!p.exif.gps) without_gps.push_back(name);
-        photos.push_back(std::move(p));
+        if (!p.exif.gps) without_gps.push_back(p.photo);
     }
     // One camera at one focal length: the AIR folder has one field of view.
     const ImportedPhoto& first = photos.front();
@@ -203,6 +172,52 @@ PhotoImportResult import_photos(const PhotoImportOptions& o, const std::function
                             without_gps.front() + "); their Latitude,Longitude are left empty");
     res.gps_fixes = photos.size() - without_gps.size();
 
+    // Field of view across the frame's width: the sensor width spans the longer side of the stored
+    // pixels (square pixels), as a sensor is wider than high. (Every photo has the same size.)
+    const io::PhotoExif& size = photos.front().exif;
+    const double across = res.sensor_width_mm * std::min(1.0, double(size.width) / std::max(size.width, size.height));
+    res.hfov_deg = 2 * std::atan(across / (2 * res.focal_length_mm)) / kDeg;
+    for (ImportedPhoto& p : photos) p.time_s = p.exif.time_s - t0;
+    res.photos = std::move(photos);
+    return res;
+}
+
+PhotoImportResult import_photos(const PhotoImportOptions& o, const std::function<void(std::size_t, std::size_t)>& progress) {
+    // Options first: a missing one costs nothing.
+    if (o.out.empty()) throw FieldError("out", "required (the AIR folder to write)");
+    if (!(o.altitude_agl_m > 0 && o.altitude_agl_m <= 20000))
+        throw FieldError("altitude_agl_m", std::isnan(o.altitude_agl_m)
+                                               ? "required: the camera's height above the ground in metres (EXIF GPS altitude is above sea "
+                                                 "level and a camera's GPS altitude is unreliable, so trnkit never takes it from the photos)"
+                                               : num(o.altitude_agl_m) + " m must be in (0, 20000]");
+    if (o.sensor_width_mm != 0 && !(o.sensor_width_mm > 0 && o.sensor_width_mm <= 100))
+        throw FieldError("sensor_width_mm", num(o.sensor_width_mm) + " mm must be in (0, 100]");
+    if (o.width < 16 || o.width > 16384) throw FieldError("width", std::to_string(o.width) + " px must be in [16, 16384]");
+    std::string map_file;
+    if (!o.map.empty()) {
+        std::error_code ec;
+        if (!fs::is_regular_file(o.map, ec)) throw FieldError("map", o.map + ": not a file");
+        if (!(o.metres_per_pixel > 0) && !io::has_geotiff_extension(o.map))
+            throw FieldError("metres_per_pixel", "required with `map` " + o.map + " (not a GeoTIFF, whose georeference would give it)");
+        map_file = fs::relative(fs::absolute(o.map), fs::absolute(fs::path(o.out)).lexically_normal(), ec).generic_string();
+        if (ec || map_file.empty()) throw FieldError("map", o.map + ": no path from " + o.out + " to it (" + ec.message() + ")");
+        if (o.map_origin)
+            if (const std::string why = geo_origin_problem(*o.map_origin); !why.empty()) throw FieldError("map_origin", why);
+    } else if (o.metres_per_pixel > 0 || o.map_origin) {
+        throw FieldError("map", "required with `" + std::string(o.map_origin ? "map_origin" : "metres_per_pixel") + "` (they describe the map)");
+    }
+
+    // Every photo's EXIF before anything is written, checked as a set.
+    std::vector<ImportedPhoto> read;
+    for (const std::string& name : list_photos(o.photos)) {
+        ImportedPhoto p;
+        p.photo = name;
+        p.exif = io::read_photo_exif((fs::path(o.photos) / name).string());
+        read.push_back(std::move(p));
+    }
+    PhotoImportResult res = check_photo_set(std::move(read), o);
+    std::vector<ImportedPhoto>& photos = res.photos;
+
     // The folder, built whole beside its target.
     io::StagedFolder staged(o.out, "import-photos", o.force);
     const std::string dir = staged.path();
@@ -212,7 +227,6 @@ PhotoImportResult import_photos(const PhotoImportOptions& o, const std::function
         ImportedPhoto& p = photos[i];
         std::snprintf(frame_name, sizeof frame_name, "frame_%05zu.png", i);
         p.frame = frame_name;
-        p.time_s = p.exif.time_s - t0;
         const GrayImage frame = io::load_photo_gray((fs::path(o.photos) / p.photo).string(), o.width);
         if (i == 0) res.frame_width = frame.width, res.frame_height = frame.height;
         AirRecord r;
@@ -228,10 +242,6 @@ PhotoImportResult import_photos(const PhotoImportOptions& o, const std::function
     }
     writer.close();
 
-    // Field of view across the frame's width: the sensor width spans the longer side of the stored
-    // pixels (square pixels), as a sensor is wider than high.
-    const double across = res.sensor_width_mm * std::min(1.0, double(first.exif.width) / std::max(first.exif.width, first.exif.height));
-    res.hfov_deg = 2 * std::atan(across / (2 * res.focal_length_mm)) / kDeg;
     FlightInfo info;
     info.scenario = "photos " + o.photos + " (" + res.camera + ")";
     info.map_file = map_file;
@@ -244,7 +254,6 @@ PhotoImportResult import_photos(const PhotoImportOptions& o, const std::function
     info.latlon_source = kLatLonCameraGps;
     write_flight_info(dir + "/flight.json", info);
     staged.commit();
-    res.photos = std::move(photos);
     return res;
 }
 
