@@ -347,8 +347,16 @@ TEST_F(PhotoCli, TextThatIsNotUtf8BecomesReplacementCharacters) {
     EXPECT_HAS(nlohmann::json::parse(flight)["scenario"].get<std::string>(), "ph\xEF\xBF\xBD\xEF\xBF\xBDotos");
     EXPECT_HAS(nlohmann::json::parse(flight)["scenario"].get<std::string>(), "Cam\xEF\xBF\xBD\xEF\xBF\xBD(");
 
+    // A frame file name that is not UTF-8 (metadata.csv's Filename) reaches gps_track.csv the same way.
+    std::string metadata = read_text(air + "/metadata.csv");
+    metadata.replace(metadata.find("frame_00000.png"), 15, "fr\xffme_00000.png");
+    std::ofstream(air + "/metadata.csv", std::ios::trunc) << metadata;
+    fs::rename(air + "/frame_00000.png", air + "/fr\xffme_00000.png");
+
     r = run_trnkit("localize --dataset '" + air + "' --odometry visual --start-from-gps 15 --backend cpu --no-plots --out '" + loc + "'");
     ASSERT_EQ(r.code, 0) << r.output;
+    const std::string track = read_text(loc + "/gps_track.csv");
+    EXPECT_HAS(track, ",fr\xEF\xBF\xBDme_00000.png,");
     const std::string summary = read_text(loc + "/summary.json");
     EXPECT_TRUE(parses_as_json(summary)) << summary;
 }
