@@ -1,17 +1,16 @@
 #include "results_store.hpp"
 
-#include <fcntl.h>
 #include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <algorithm>
 
 #include "trn/error.hpp"
 #include "trn/io/atomic_file.hpp"
