@@ -19,6 +19,7 @@
 #include "options.hpp"
 #include "photo_import_options.hpp"
 #include "progress.hpp"
+#include "trn/io/image_header.hpp"
 #include "trn/error.hpp"
 #include "trn/registry.hpp"
 #include "trn/filter/nadir_warp.hpp"
@@ -159,6 +160,20 @@ void localize(LocalizeArgs a) {
         throw Error("--min-particles " + std::to_string(profile.min_particles) + " exceeds --max-particles " + std::to_string(profile.max_particles) +
                     (dissertation ? " (--profile dissertation)" : ""));
     if (!a.photos.empty()) {
+        // What the run will refuse, before the import replaces --dataset: the map (its header, within
+        // the limits) and a --start on it.
+        ImageSize map_size;
+        try {
+            map_size = check_image_file(a.inputs.map);
+        } catch (const Error& e) {
+            throw Error("--map " + std::string(e.what()));
+        }
+        if (!a.start.empty()) {
+            const auto [x, y] = *parse_pair(a.start);
+            if (!(x >= 0 && x < double(map_size.width) && y >= 0 && y < double(map_size.height)))
+                throw Error("--start " + a.start + ": map pixel " + std::to_string(x) + "," + std::to_string(y) + " is outside the " +
+                            std::to_string(map_size.width) + "x" + std::to_string(map_size.height) + " px map " + a.inputs.map);
+        }
         // Both folders before the import: the one it replaces, and the report's.
         io::check_output_folder(a.inputs.dataset, "import-photos", a.force, "--dataset");
         io::check_output_folder(a.out.empty() ? a.inputs.dataset + "/localize" : a.out, "localize", a.force);

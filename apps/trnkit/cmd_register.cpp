@@ -10,6 +10,7 @@
 #include "trn/error.hpp"
 #include "trn/filter/frame_registration.hpp"
 #include "trn/filter/real_air_folder.hpp"
+#include "trn/io/map_pixels.hpp"
 #include "trn/io/atomic_file.hpp"
 #include "trn/io/output_folder.hpp"
 #include "trn/io/image_io.hpp"
@@ -90,8 +91,10 @@ void add_register_command(CLI::App& app) {
         // An AIR folder is an output folder like any other: absent, empty or register's own.
         if (!a->air_out.empty()) io::check_output_folder(a->air_out, "register", a->force, "--air-out");
         const std::vector<reg::PoseRow> rows = a->verify.empty() ? std::vector<reg::PoseRow>{} : reg::read_pose_rows(a->verify);
-        const GrayImage map = load_gray(a->map);
-        const GrayImage valid = load_validity(a->map, a->nodata >= 0 ? std::optional<int>(a->nodata) : std::nullopt);
+        // Pixels and no-data as localize reads them (a GeoTIFF's mask and nodata value too).
+        const io::MapPixels map_pixels = io::load_map_pixels(a->map, a->nodata >= 0 ? std::optional<int>(a->nodata) : std::nullopt);
+        const GrayImage& map = map_pixels.image;
+        const GrayImage& valid = map_pixels.valid;
         const GrayView valid_view = validity_view(valid);
         std::vector<GrayImage> frames;
         std::vector<std::string> names;

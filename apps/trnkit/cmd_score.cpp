@@ -9,6 +9,7 @@
 #include "options.hpp"
 #include "trn/io/atomic_file.hpp"
 #include "trn/io/image_io.hpp"
+#include "trn/io/map_pixels.hpp"
 #include "trn/io/pose_csv.hpp"
 #include "trn/parse_number.hpp"
 #include "trn/registry.hpp"
@@ -59,8 +60,10 @@ void add_score_command(CLI::App& app) {
         ScoreOptions options;
         options.sampling = parse_sampling(a->sampling);
         options.min_valid_fraction = a->min_valid;
-        const GrayImage map = load_gray(a->map);
-        const GrayImage valid = load_validity(a->map, a->nodata >= 0 ? std::optional<int>(a->nodata) : std::nullopt);
+        // Pixels and no-data as localize reads them (a GeoTIFF's mask and nodata value too).
+        const io::MapPixels map_pixels = io::load_map_pixels(a->map, a->nodata >= 0 ? std::optional<int>(a->nodata) : std::nullopt);
+        const GrayImage& map = map_pixels.image;
+        const GrayImage& valid = map_pixels.valid;
         const GrayImage templ = load_gray(a->templ);
         const std::vector<Pose> poses = read_poses_csv(a->poses);
         if (poses.empty()) throw Error(a->poses + ": no poses to score");

@@ -6,6 +6,7 @@
 
 #include "options.hpp"
 #include "progress.hpp"
+#include "trn/sim/geodesy.hpp"
 #include "trn/io/photo.hpp"
 
 namespace trn::cli {
@@ -37,7 +38,8 @@ void add_photo_import_options(CLI::App& cmd, PhotoImportArgs& a) {
         ->check(CLI::Validator(
             [](std::string& t) -> std::string {
                 double lat, lon;
-                return parse_latlon(t, lat, lon) ? "" : "expected LAT,LON in degrees (two numbers separated by a comma), got '" + t.substr(0, 40) + "'";
+                if (!parse_latlon(t, lat, lon)) return "expected LAT,LON in degrees (two numbers separated by a comma), got '" + t.substr(0, 40) + "'";
+                return sim::geo_origin_problem({lat, lon});
             },
             "LAT,LON"));
 }

@@ -1,28 +1,28 @@
 #include "results_store.hpp"
 
-#include <fcntl.h>
 #include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include "trn/error.hpp"
 #include "trn/io/atomic_file.hpp"
+#include "trn/io/outside_text.hpp"
+#include "trn/io/input_file.hpp"
 
 namespace trn::experiments {
 namespace fs = std::filesystem;
 
 std::string config_hash(const Json& config) {
     std::uint64_t h = 0xcbf29ce484222325ull;
-    for (const unsigned char c : config.dump()) h = (h ^ c) * 0x100000001b3ull;
+    for (const unsigned char c : io::json_line(config)) h = (h ^ c) * 0x100000001b3ull;
     char text[17];
     std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(h));
     return text;
@@ -63,35 +63,135 @@ std::string folder_of(const std::string& path) {
 
 }  // namespace
 
+namespace {
+
+const char* type_name(const Json& v) {
+    if (v.is_null()) return "null";
+    if (v.is_boolean()) return "a boolean";
+    if (v.is_number()) return "a number";
+    if (v.is_string()) return "a string";
+    if (v.is_array()) return "an array";
+    return "an object";
+}
+
+// What the merge reads a value as: a number (null is a number that was not finite), a boolean, an
+// array or an object.
+const char* kind_name(const Json& v) { return v.is_null() ? "a number" : type_name(v); }
+
+std::string field_error(const std::string& where, const std::string& field, const Json& v, const char* wanted) {
+    return where + ": field " + field + " is " + type_name(v) + ", not " + wanted + " (not a line of a results store)";
+}
+
+// A result holds numbers, booleans and nulls, in arrays and objects.
+void check_result_values(const Json& v, const std::string& field, const std::string& where) {
+    if (v.is_object()) {
+        for (auto it = v.begin(); it != v.end(); ++it) check_result_values(it.value(), field + "." + io::quote_input(it.key(), 40), where);
+    } else if (v.is_array()) {
+        for (std::size_t i = 0; i < v.size(); ++i) check_result_values(v[i], field + "[" + std::to_string(i) + "]", where);
+    } else if (v.is_string() || v.is_binary() || v.is_discarded()) {
+        throw Error(field_error(where, field, v, "a number, boolean or null"));
+    }
+}
+
+std::string kind_difference(const Json& a, const Json& b, const std::string& field, std::size_t earlier_line) {
+    if (std::string(kind_name(a)) != kind_name(b))
+        return "field " + field + " is " + kind_name(a) + " where line " + std::to_string(earlier_line) + " has " + kind_name(b);
+    if (a.is_object()) {
+        for (auto it = a.begin(); it != a.end(); ++it)
+            if (b.contains(it.key()))
+                if (std::string d = kind_difference(it.value(), b.at(it.key()), field + "." + io::quote_input(it.key(), 40), earlier_line);
+                    !d.empty())
+                    return d;
+    } else if (a.is_array() && !b.empty()) {
+        for (std::size_t i = 0; i < a.size(); ++i)
+            if (std::string d = kind_difference(a[i], b[0], field + "[" + std::to_string(i) + "]", earlier_line); !d.empty()) return d;
+    }
+    return "";
+}
+
+}  // namespace
+
+std::optional<StoreLine> parse_store_line(std::string_view text, const std::string& where) {
+    io::check_json_depth(text, where);  // the parser recurses per level: 100 000 levels overflow the stack
+    Json j = Json::parse(text.begin(), text.end(), nullptr, false);
+    if (j.is_discarded()) return std::nullopt;
+    if (!j.is_object()) throw Error(where + ": is " + type_name(j) + ", not a JSON object (not a line of a results store)");
+    auto string_field = [&](const char* key, bool required) -> std::string {
+        if (!j.contains(key)) {
+            if (required) throw Error(where + ": field " + key + " is missing (not a line of a results store)");
+            return "";
+        }
+        const Json& v = j.at(key);
+        if (!v.is_string()) throw Error(field_error(where, key, v, "a string"));
+        return v.get<std::string>();
+    };
+    StoreLine line;
+    line.job = string_field("job", true);
+    if (line.job.empty()) throw Error(where + ": field job is empty");
+    line.config = string_field("config", true);
+    line.commit = string_field("commit", false);
+    for (const char* key : {"params", "result"}) {
+        if (!j.contains(key)) throw Error(where + ": field " + key + " is missing (not a line of a results store)");
+        if (!j.at(key).is_object()) throw Error(field_error(where, key, j.at(key), "an object"));
+    }
+    check_result_values(j.at("result"), "result", where);
+    if (j.contains("wall_s")) {
+        const Json& w = j.at("wall_s");
+        if (!w.is_number() || !std::isfinite(w.get<double>()) || w.get<double>() < 0)
+            throw Error(where + ": field wall_s is " + (w.is_number() ? io::quote_input(io::json_line(w)) : std::string(type_name(w))) +
+                        ", not a number of seconds >= 0");
+        line.wall_s = w.get<double>();
+    }
+    line.params = std::move(j.at("params"));
+    line.result = std::move(j.at("result"));
+    return line;
+}
+
+std::string result_kind_difference(const Json& result, const Json& earlier, std::size_t earlier_line) {
+    return kind_difference(result, earlier, "result", earlier_line);
+}
+
 ResultsStore::ResultsStore(std::string path, const Json& config) : path_(std::move(path)), hash_(config_hash(config)), config_(config) {}
 
 std::string ResultsStore::load() {
     lines_.clear();
     unreadable = other_config = repeated = 0;
-    if (path_.empty() || !fs::exists(path_)) return "";
-    std::ifstream in(path_, std::ios::binary);
-    if (!in) throw Error(path_ + ": cannot read the results store (" + std::strerror(errno) + ")");
+    if (path_.empty()) return "";
+    struct stat st {};
+    if (::lstat(path_.c_str(), &st) != 0) {
+        if (errno == ENOENT) return "";  // no job stored yet
+    } else if (S_ISLNK(st.st_mode)) {
+        // Refused before any job runs: append() would refuse it after the first (open_for_append).
+        throw Error(io::quote_input(path_, 512) + ": is a symbolic link; trnkit does not append the results store through it (remove it)");
+    }
+    // Regular files only, of a bounded size: a FIFO would hang the run, /dev/zero never end.
+    const std::string text = io::read_input_file(path_, kMaxResultsStoreBytes, "a results store");
     std::map<std::string, std::size_t> other_hashes;
-    std::string line;
-    while (std::getline(in, line)) {
+    const Json* first_result = nullptr;
+    std::size_t first_line = 0, line_no = 0;
+    for (std::size_t begin = 0; begin < text.size();) {
+        const std::size_t end = std::min(text.find('\n', begin), text.size());
+        const std::string_view line(text.data() + begin, end - begin);
+        begin = end + 1;
+        ++line_no;
         if (line.empty()) continue;
-        Json j;
-        try {
-            j = Json::parse(line);
-        } catch (const std::exception&) {
+        const std::string where = io::quote_input(path_, 512) + ":" + std::to_string(line_no);
+        std::optional<StoreLine> l = parse_store_line(line, where);
+        if (!l) {
             ++unreadable;
             continue;
         }
-        if (!j.is_object() || !j.contains("job") || !j["job"].is_string() || !j.contains("config") || !j["config"].is_string() ||
-            !j.contains("result") || !j.contains("params")) {
-            ++unreadable;
+        if (l->config != hash_) {
+            ++other_config, ++other_hashes[l->config];
             continue;
         }
-        if (j["config"] != hash_) {
-            ++other_config, ++other_hashes[j["config"].get<std::string>()];
-            continue;
+        if (first_result) {
+            if (const std::string d = result_kind_difference(l->result, *first_result, first_line); !d.empty()) throw Error(where + ": " + d);
         }
-        if (!lines_.emplace(j["job"].get<std::string>(), std::move(j)).second) ++repeated;
+        const std::string job = l->job;
+        const auto [it, added] = lines_.emplace(job, Kept{std::move(*l), line_no});
+        if (!added) ++repeated;
+        if (!first_result) first_result = &it->second.line.result, first_line = line_no;
     }
     if (!unreadable && !other_config && !repeated) return "";
     std::string note = path_ + ":";
@@ -106,13 +206,17 @@ std::string ResultsStore::load() {
     return note;
 }
 
+std::string ResultsStore::where(const std::string& job) const {
+    return io::quote_input(path_, 512) + ":" + std::to_string(lines_.at(job).line_no);
+}
+
 Json ResultsStore::output(const std::string& job) const {
-    const Json& l = lines_.at(job);
-    Json params = l.at("params");
+    const StoreLine& l = lines_.at(job).line;
+    Json params = l.params;
     params["id"] = job;  // stored without it: the line's "job"
-    Json o{{"params", params}, {"result", l.at("result")}, {"wall_s", l.value("wall_s", 0.0)}};
-    o["backend_device"] = l.value("device", config_.value("backend", std::string("?")));
-    o["git_commit"] = l.value("commit", std::string("?"));
+    Json o{{"params", params}, {"result", l.result}, {"wall_s", l.wall_s}};
+    o["backend_device"] = config_.value("backend", std::string("?"));
+    o["git_commit"] = l.commit.empty() ? std::string("?") : l.commit;
     o["config"] = config_;
     return o;
 }
@@ -124,7 +228,8 @@ void ResultsStore::append(const Json& params, const Json& result, double wall_s,
     fs::create_directories(folder + "/configs", ec);
     if (ec) throw Error(folder + "/configs: cannot create folder (" + ec.message() + ")");
     const std::string config_file = folder + "/configs/" + hash_ + ".json";
-    if (!fs::exists(config_file)) io::write_file_atomic(config_file, config_.dump(1) + "\n");
+    // A name trnkit chose: anything there but a plain file (a planted link) is refused, not written through.
+    if (!fs::is_regular_file(fs::symlink_status(config_file))) io::write_file_atomic(config_file, io::json_text(config_, 1), io::Destination::Derived);
 
     Json p = params;
     const std::string job = p.at("id").get<std::string>();
@@ -134,10 +239,9 @@ void ResultsStore::append(const Json& params, const Json& result, double wall_s,
     std::snprintf(wall, sizeof wall, "%.4g", wall_s);
     line["wall_s"] = std::strtod(wall, nullptr);
     (void)device;  // not kept: the configuration names the backend, the commit the code
-    const std::string text = line.dump() + "\n";
+    const std::string text = io::json_text(line);
 
-    const int fd = ::open(path_.c_str(), O_WRONLY | O_APPEND | O_CREAT | O_CLOEXEC, 0644);
-    if (fd < 0) throw Error(path_ + ": cannot open the results store for appending (" + std::strerror(errno) + ")");
+    const int fd = io::open_for_append(path_, "the results store");
     struct Closer {
         int fd;
         ~Closer() { ::close(fd); }  // also releases the lock
@@ -147,12 +251,8 @@ void ResultsStore::append(const Json& params, const Json& result, double wall_s,
     // A last line cut off by a killed writer is closed first, so it cannot swallow this one.
     struct stat st {};
     if (::fstat(fd, &st) == 0 && st.st_size > 0) {
-        const int rd = ::open(path_.c_str(), O_RDONLY | O_CLOEXEC);
         char last = '\n';
-        if (rd >= 0) {
-            if (::pread(rd, &last, 1, st.st_size - 1) != 1) last = '\n';
-            ::close(rd);
-        }
+        if (::pread(fd, &last, 1, st.st_size - 1) != 1) last = '\n';
         if (last != '\n') io::write_all(fd, "\n", path_);
     }
     io::write_all(fd, text, path_);

@@ -13,14 +13,43 @@
 // newline first, so the fragment stays one unreadable line and every later line reads. Reading
 // ignores, and counts: lines that do not parse (the fragments), lines of another configuration
 // (named by hash, e.g. another seed, quick vs full), and repeated jobs (the first line wins). Two
-// runs of the same job in parallel both append; the first line is used.
+// runs of the same job in parallel both append; the first line is used. A link, FIFO or device at
+// the store's name is refused (appending and reading: io::open_for_append, io::read_input_file).
+//
+// A line that parses but is not a line of the store is an Error naming file:line and the field
+// (parse_store_line): the merge reads its fields by type, so it must not meet another type.
 #include <cstddef>
+#include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
+#include <string_view>
 
 #include "study.hpp"
 
 namespace trn::experiments {
+
+// Largest store read: ~80 000 flights of ~0.55 kB (5760 conversion flights are 3.2 MB).
+inline constexpr std::uint64_t kMaxResultsStoreBytes = std::uint64_t{64} << 20;
+
+// One line of a store, its fields checked.
+struct StoreLine {
+    std::string job, config, commit;
+    Json params, result;
+    double wall_s = 0;
+};
+
+// Reads one line (without its newline); `where` names it ("results/x.jsonl:12"). nullopt when it is
+// not JSON (a write cut off by a killed writer). Throws trn::Error "WHERE: field F ..." when it is
+// JSON but not a store line: not an object; job, config or commit not a string; params or result
+// not an object; wall_s not a number >= 0; a params value not a string, number or boolean; a result
+// value not a number, boolean or null (or arrays and objects of them); nested deeper than 64.
+std::optional<StoreLine> parse_store_line(std::string_view text, const std::string& where);
+
+// The first difference in kind (number or null, boolean, array, object) between a result and the
+// one of an earlier line, as "field result.K is an array where line N has a number"; "" when none.
+// Keys only one of them has are not compared (a study's results may gain fields).
+std::string result_kind_difference(const Json& result, const Json& earlier, std::size_t earlier_line);
 
 // FNV-1a 64 of config.dump(), 16 hex digits.
 std::string config_hash(const Json& config);
@@ -37,6 +66,8 @@ public:
     // Reads the file (absent: empty). Returns a one-line note when lines were ignored, else "".
     std::string load();
     bool has(const std::string& job) const { return lines_.count(job) > 0; }
+    // "path:line" of the job's line, for messages.
+    std::string where(const std::string& job) const;
     // {"params", "result", "wall_s", "backend_device", "git_commit"} as a job file has them.
     Json output(const std::string& job) const;
     std::size_t size() const { return lines_.size(); }
@@ -51,7 +82,11 @@ public:
 private:
     std::string path_, hash_;
     Json config_;
-    std::map<std::string, Json> lines_;
+    struct Kept {
+        StoreLine line;
+        std::size_t line_no;
+    };
+    std::map<std::string, Kept> lines_;
 };
 
 // The default store of a study: results/<study>/<profile>[-quick].jsonl.

@@ -17,6 +17,7 @@
 #include "trn/experiments/experiment.hpp"
 #include "trn/io/input_file.hpp"
 #include "trn/io/atomic_file.hpp"
+#include "trn/io/outside_text.hpp"
 #include "trn/io/output_folder.hpp"
 #include "trn/io/provenance.hpp"
 #include "trn/registry.hpp"
@@ -69,7 +70,7 @@ Json read_json(const std::string& path) {
 }
 
 // A job file is either complete or absent (a run killed while writing leaves the old state).
-void write_json(const std::string& path, const Json& j) { io::write_file_atomic(path, j.dump(1) + "\n"); }
+void write_json(const std::string& path, const Json& j) { io::write_file_atomic(path, io::json_text(j, 1)); }
 
 void progress_bar(std::size_t done, std::size_t total, const std::string& what) {
     const int width = 30, filled = total ? static_cast<int>(width * done / total) : width;
@@ -185,6 +186,22 @@ Json full_configuration(const Study& study, const ExperimentOptions& o) {
 
 }  // namespace
 
+namespace {
+
+// A stored job's output, its params checked against the job's own: the merge reads them by type.
+Json checked_stored_output(const ResultsStore& store, const Json& job) {
+    const std::string id = job.at("id").get<std::string>();
+    Json out = store.output(id);
+    // Key order differs (the store keeps the id apart): compare unordered.
+    if (nlohmann::json::parse(io::json_line(out.at("params"))) != nlohmann::json::parse(io::json_line(job)))
+        throw Error(store.where(id) + ": field params is " + io::quote_input(io::json_line(out.at("params")), 200) + ", but job " + io::quote_input(id) +
+                    " of this study is " + io::quote_input(io::json_line(job), 200));
+    out["params"] = job;
+    return out;
+}
+
+}  // namespace
+
 std::size_t run_experiment(const ExperimentOptions& o) {
     check_backend_spec(o.backend);
     const auto study = make_study(o.study, o.shared_data);
@@ -195,8 +212,8 @@ std::size_t run_experiment(const ExperimentOptions& o) {
     for (const Json& j : jobs) {
         const std::string id = j.at("id").get<std::string>();
         // Ids travel through dispatchers as one word and in comma lists (--job a,b): a study bug otherwise.
-        if (id.empty() || id.find_first_of(", \t\n") != std::string::npos) throw Error("experiment: job id " + j.at("id").dump() + " has a comma or blank");
-        if (!ids.insert(id).second) throw Error("experiment: duplicate job id " + j.at("id").dump());
+        if (id.empty() || id.find_first_of(", \t\n") != std::string::npos) throw Error("experiment: job id " + io::json_line(j.at("id")) + " has a comma or blank");
+        if (!ids.insert(id).second) throw Error("experiment: duplicate job id " + io::json_line(j.at("id")));
     }
 
     const std::string out = o.out.empty() ? "experiments/" + o.study + (profile == filter::Profile::Dissertation ? "-dissertation" : "") +
@@ -256,8 +273,8 @@ std::size_t run_experiment(const ExperimentOptions& o) {
         if (!fs::exists(path)) return false;
         const Json done = read_json(path);
         if (done.at("config") != config)
-            throw Error("experiment: " + path + " was made with another configuration (" + done.at("config").dump() + ", asked for " +
-                        config.dump() + "); use another `out` or delete it");
+            throw Error("experiment: " + path + " was made with another configuration (" + io::json_line(done.at("config")) + ", asked for " +
+                        io::json_line(config) + "); use another `out` or delete it");
         return true;
     };
 
@@ -303,10 +320,10 @@ std::size_t run_experiment(const ExperimentOptions& o) {
         }
         const std::string id = j.at("id").get<std::string>();
         if (o.resume && store.has(id)) {
-            outputs.push_back(store.output(id));
+            outputs.push_back(checked_stored_output(store, j));
             ++from_store;
         } else if (o.resume && shared.has(id)) {
-            outputs.push_back(shared.output(id));
+            outputs.push_back(checked_stored_output(shared, j));
             ++from_shared;
         } else {
             outputs.push_back(read_json(job_path(j)));
@@ -319,7 +336,14 @@ std::size_t run_experiment(const ExperimentOptions& o) {
         return missing;
     }
     MergeContext mc{out, config, !o.no_plots};
-    std::string markdown = study->merge(outputs, mc);
+    std::string markdown;
+    try {
+        markdown = study->merge(outputs, mc);
+    } catch (const nlohmann::json::exception& e) {  // a field the store's checks cannot know of: still one line, exit 1
+        throw Error("experiment " + o.study + ": the job outputs cannot be merged: a field is missing or of another type (" + e.what() +
+                    "); they came from " + (from_store ? store.path() + ", " : std::string()) + (from_shared ? shared.path() + ", " : std::string()) +
+                    "job files in " + jobs_dir);
+    }
     if (missing)
         markdown = "**PARTIAL RUN: " + std::to_string(outputs.size()) + " of " + std::to_string(jobs.size()) +
                    " jobs finished; cells are means over the finished jobs only.**\n\n" + markdown;

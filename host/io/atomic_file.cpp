@@ -236,6 +236,26 @@ void write_all(int fd, std::string_view bytes, const std::string& what) {
     }
 }
 
+int open_for_append(const std::string& path, const std::string& what) {
+    const int fd = ::open(path.c_str(), O_RDWR | O_APPEND | O_CREAT | O_NOFOLLOW | O_NONBLOCK | O_NOCTTY | O_CLOEXEC, 0644);
+    if (fd < 0) {
+        const int e = errno;
+        if (e == ELOOP) throw Error(path + ": is a symbolic link; trnkit does not append " + what + " through it (remove it)");
+        throw Error(path + ": cannot open " + what + " for appending (" + errno_text(e) + ")");
+    }
+    struct stat st {};
+    std::string why;
+    if (::fstat(fd, &st) != 0) why = "cannot read its status (" + errno_text() + ")";
+    else if (!S_ISREG(st.st_mode)) why = "is not a regular file (a device, FIFO or socket); it is left as it is";
+    else if (st.st_nlink > 1) why = "has " + std::to_string(st.st_nlink) + " hard links; trnkit appends only to a file of its own";
+    else if (::fcntl(fd, F_SETFL, O_APPEND) != 0) why = "cannot be opened for appending (" + errno_text() + ")";
+    if (!why.empty()) {
+        ::close(fd);
+        throw Error(path + ": " + why);
+    }
+    return fd;
+}
+
 void check_output_file(const std::string& given, const std::string& option) {
     const std::string name = option.empty() ? given : option + " " + given;
     if (given.empty()) throw Error((option.empty() ? std::string("output file") : option) + ": empty file name");

@@ -1,4 +1,5 @@
 #include "trn/io/gnuplot.hpp"
+#include "trn/io/outside_text.hpp"
 
 #include <fcntl.h>
 #include <spawn.h>
@@ -26,26 +27,6 @@ extern char** environ;  // handed to gnuplot as it is; the library itself reads 
 namespace trn::io {
 namespace {
 namespace fs = std::filesystem;
-
-// Length of the valid UTF-8 sequence at s[i] (RFC 3629: no overlongs, surrogates or code
-// points above U+10FFFF), 0 when there is none; `cp` gets its code point.
-std::size_t utf8_sequence(std::string_view s, std::size_t i, char32_t& cp) {
-    const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(s[k]); };
-    const unsigned char c = byte(i);
-    std::size_t len = 0;
-    char32_t min = 0;
-    if (c >= 0xC2 && c <= 0xDF) len = 2, min = 0x80, cp = c & 0x1F;
-    else if (c >= 0xE0 && c <= 0xEF) len = 3, min = 0x800, cp = c & 0x0F;
-    else if (c >= 0xF0 && c <= 0xF4) len = 4, min = 0x10000, cp = c & 0x07;
-    else return 0;
-    if (i + len > s.size()) return 0;
-    for (std::size_t k = 1; k < len; ++k) {
-        if ((byte(i + k) & 0xC0) != 0x80) return 0;
-        cp = (cp << 6) | (byte(i + k) & 0x3F);
-    }
-    if (cp < min || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF)) return 0;
-    return len;
-}
 
 bool plain_char(char c) {
     return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '.' || c == '_' || c == '-';

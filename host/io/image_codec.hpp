@@ -18,7 +18,7 @@ GrayImage decode_gray(const std::string& path);
 
 // The validity of load_validity (image_io.hpp): 255 valid, 0 where alpha is 0 or every colour
 // channel equals *nodata; empty when the file has no alpha and nodata is not given.
-GrayImage decode_validity(const std::string& path, std::optional<int> nodata);
+GrayImage decode_validity(const std::string& path, std::optional<int> nodata, int transparent_grey);
 
 // Encodes in the format of the extension (".png", ...) into memory.
 std::vector<std::uint8_t> encode_gray(const std::string& path, const std::string& extension, GrayView image);

@@ -100,7 +100,7 @@ GrayImage decode_gray(const std::string& path) {
     return img;
 }
 
-GrayImage decode_validity(const std::string& path, std::optional<int> nodata) {
+GrayImage decode_validity(const std::string& path, std::optional<int> nodata, int /*transparent_grey: libpng expands tRNS to alpha*/) {
     PngReader reader(path);
     png_structp png = reader.png;
     png_infop info = reader.info;

@@ -27,11 +27,56 @@ bool read_at(std::ifstream& f, std::uint64_t offset, unsigned char* out, std::si
     return f.read(reinterpret_cast<char*>(out), static_cast<std::streamsize>(n)) && f.gcount() == static_cast<std::streamsize>(n);
 }
 
-// PNG: signature, then the IHDR chunk: length, "IHDR", width, height (big-endian).
-std::optional<ImageSize> png_size(std::ifstream& f) {
-    unsigned char h[24];
+// PNG: signature, then the IHDR chunk: length, "IHDR", width, height (big-endian), bit depth,
+// colour type; then the chunks up to the first IDAT, for a tRNS (transparency) chunk.
+std::optional<ImageSize> png_size(std::ifstream& f, std::uint64_t file_bytes) {
+    unsigned char h[26];
     if (!read_at(f, 0, h, sizeof h) || std::string(reinterpret_cast<char*>(h + 12), 4) != "IHDR") return std::nullopt;
-    return ImageSize{be32(h + 16), be32(h + 20), 2, 0, "PNG"};
+    ImageSize size{be32(h + 16), be32(h + 20), 2, 0, "PNG"};
+    const int colour = h[25];
+    size.bits_per_sample = h[24];
+    size.channels = colour == 0 ? 1 : colour == 4 ? 2 : colour == 6 ? 4 : 3;  // grey, grey+alpha, RGBA; RGB and palette: 3
+    size.alpha_possible = colour == 4 || colour == 6;
+    std::uint64_t at = 33;
+    for (int chunks = 0; chunks < 10000 && at + 8 <= file_bytes; ++chunks) {
+        unsigned char c[10];
+        if (!read_at(f, at, c, 8)) break;
+        const std::uint32_t length = be32(c);
+        const std::string type(reinterpret_cast<char*>(c + 4), 4);
+        if (type == "IDAT" || type == "IEND") break;
+        if (type == "tRNS") {
+            size.alpha_possible = true;
+            if (colour == 3) size.channels = 4;  // a palette with transparency decodes as BGRA
+            if (colour == 0 && length >= 2 && read_at(f, at + 8, c, 2)) {
+                const int value = int(be16(c)), depth = size.bits_per_sample;  // 1, 2, 4 bits are decoded scaled to 8
+                size.transparent_grey = depth < 8 && depth > 0 ? value * 255 / ((1 << depth) - 1) : value;
+            }
+        }
+        at += 12 + std::uint64_t(length);
+    }
+    return size;
+}
+
+// A JPEG frame header (SOFn at `at`): length, precision, height, width, components (id, sampling
+// HV, table). A progressive frame (SOF2, 6, 10, 14) is decoded by libjpeg into a buffer of every
+// DCT coefficient of the image first, 2 bytes per coefficient: 2 B per pixel of each component at
+// its sampling (4:2:0 colour: 3 B/px), on top of the 2 B/px of the grey output and its copy.
+std::optional<ImageSize> jpeg_frame(std::ifstream& f, std::uint64_t at, unsigned char marker, std::uint32_t length) {
+    unsigned char h[8 + 3 * 255];
+    if (length < 8 || !read_at(f, at + 2, h, 8)) return std::nullopt;
+    const std::uint32_t components = h[7];
+    if (components == 0 || length < 8 + 3 * components || !read_at(f, at + 2, h, 8 + 3 * components)) return std::nullopt;
+    ImageSize size{be16(h + 5), be16(h + 3), 2, 0, "JPEG"};
+    size.channels = components == 1 ? 1 : 3, size.bits_per_sample = h[2] > 8 ? 16 : 8, size.alpha_possible = false;
+    if ((marker & 0x03) == 0x02) {  // progressive
+        unsigned h_max = 1, v_max = 1;
+        for (std::uint32_t c = 0; c < components; ++c) h_max = std::max(h_max, unsigned(h[9 + 3 * c] >> 4)), v_max = std::max(v_max, unsigned(h[9 + 3 * c] & 15));
+        double share = 0;  // of the full-size pixel count, summed over the components
+        for (std::uint32_t c = 0; c < components; ++c) share += double(h[9 + 3 * c] >> 4) * double(h[9 + 3 * c] & 15) / (double(h_max) * v_max);
+        size.decode_bytes_per_pixel += 2 * share;
+        size.format = "progressive JPEG";
+    }
+    return size;
 }
 
 // JPEG: segments FF xx [length] until a start-of-frame (SOF0..SOF15 but DHT C4, JPG C8, DAC CC):
@@ -55,7 +100,7 @@ std::optional<ImageSize> jpeg_size(std::ifstream& f) {
         const std::uint32_t length = be16(seg);
         if (length < 2) return std::nullopt;
         const bool sof = m[1] >= 0xC0 && m[1] <= 0xCF && m[1] != 0xC4 && m[1] != 0xC8 && m[1] != 0xCC;
-        if (sof) return length >= 7 ? std::optional<ImageSize>(ImageSize{be16(seg + 5), be16(seg + 3), 2, 0, "JPEG"}) : std::nullopt;
+        if (sof) return jpeg_frame(f, at, m[1], length);
         at += 2 + length;
     }
     return std::nullopt;
@@ -128,6 +173,8 @@ std::optional<ImageSize> tiff_size(std::ifstream& f, bool little) {
     }
     if (width < 0 || height < 0) return std::nullopt;
     ImageSize size{width, height, 2, 0, "TIFF"};
+    size.channels = static_cast<int>(std::clamp<std::int64_t>(samples, 1, 4)), size.bits_per_sample = bits > 8 ? 16 : 8;
+    size.alpha_possible = samples == 2 || samples >= 4;
     const std::int64_t bw = tile_w > 0 ? std::min(tile_w, width) : width;
     const std::int64_t bh = tile_h > 0 ? std::min(tile_h, height) : rows_per_strip > 0 ? std::min(rows_per_strip, height) : height;
     const double buffer = double(bw) * double(bh) * double(std::max<std::int64_t>(samples, 1)) * double(std::max<std::int64_t>(bits, 8)) / 8;
@@ -270,7 +317,7 @@ std::optional<ImageSize> header_size(const std::string& path, std::uint64_t file
     if (!read_at(f, 0, magic.data(), magic.size())) return std::nullopt;
     static constexpr unsigned char kPng[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
     static constexpr unsigned char kJp2[12] = {0, 0, 0, 0x0C, 'j', 'P', ' ', ' ', 0x0D, 0x0A, 0x87, 0x0A};
-    if (std::equal(magic.begin(), magic.begin() + 8, kPng)) return png_size(f);
+    if (std::equal(magic.begin(), magic.begin() + 8, kPng)) return png_size(f, file_bytes);
     if (magic[0] == 0xFF && magic[1] == 0xD8) return jpeg_size(f);
     if (magic[0] == 'B' && magic[1] == 'M') return bmp_size(f);
     if (magic[0] == 'P' && ((magic[1] >= '1' && magic[1] <= '6') || magic[1] == 'F' || magic[1] == 'f')) return pnm_size(f, char(magic[1]));
@@ -290,6 +337,12 @@ std::optional<ImageSize> header_size(const std::string& path, std::uint64_t file
 std::optional<ImageSize> read_image_size(const std::string& path) {
     const io::FileIdentity file = io::check_input_file(path, io::kMaxImageFileBytes, "an image file");
     return header_size(path, file.size);
+}
+
+double validity_decode_bytes(const ImageSize& s) {
+    const double px = double(s.width) * double(s.height);
+    const double sample_bytes = s.bits_per_sample > 8 ? 2 : 1;
+    return px * (s.channels * sample_bytes + (s.bits_per_sample > 8 ? s.channels : 0) + 1);
 }
 
 ImageSize check_image_file(const std::string& path) {

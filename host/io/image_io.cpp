@@ -8,6 +8,7 @@
 #include "trn/error.hpp"
 #include "trn/io/atomic_file.hpp"
 #include "trn/io/image_header.hpp"
+#include "trn/io/input_file.hpp"
 #include "trn/limits.hpp"
 
 namespace trn {
@@ -25,8 +26,18 @@ GrayImage load_gray(const std::string& path) {
 GrayImage load_validity(const std::string& path, std::optional<int> nodata) {
     if (nodata && (*nodata < 0 || *nodata > 255))
         throw Error(path + ": no-data value " + std::to_string(*nodata) + " is not an 8-bit grey level (0..255)");
-    check_image_file(path);
-    GrayImage valid = io::detail::decode_validity(path, nodata);
+    const ImageSize size = check_image_file(path);
+    // No alpha, no transparency and no value named: every pixel is valid; the map is not decoded again.
+    if (!nodata && !size.alpha_possible) return {};
+    // The mask is read at the file's full depth (a 16-bit RGBA PNG: 8 B/px, their high bytes and the
+    // mask): the per-image budget holds for it too, before any decoder runs.
+    const double bytes = validity_decode_bytes(size);
+    if (bytes > kMaxImageDecodeBytes)
+        throw Error(io::quote_input(path, 512) + ": image " + std::to_string(size.width) + "x" + std::to_string(size.height) + " (" + size.format +
+                    ", " + std::to_string(size.channels) + " channels of " + std::to_string(size.bits_per_sample) + " bits) needs ~" +
+                    limits::format_bytes(bytes) + " to read its no-data mask (limit " + limits::format_bytes(kMaxImageDecodeBytes) + " per image)");
+    limits::check_memory(path + ": no-data mask", bytes);
+    GrayImage valid = io::detail::decode_validity(path, nodata, size.transparent_grey);
     if (valid.width > 0) limits::check_image(path + ": image", valid.width, valid.height, limits::kMaxMapPixels, limits::kLoadBytesPerPixel);
     return valid;
 }

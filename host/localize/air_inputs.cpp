@@ -10,6 +10,7 @@
 #include "trn/io/geotiff.hpp"
 #include "trn/sim/air_format.hpp"
 #include "trn/detail/angles.hpp"
+#include "trn/sim/geodesy.hpp"
 
 namespace trn::localize {
 namespace {
@@ -24,9 +25,7 @@ std::string number(double v) {
 
 // Inverse of sim::map_pixel_to_latlon (flight.json's origin, local equirectangular projection).
 std::array<double, 2> origin_latlon_to_pixel(const sim::GeoOrigin& o, double mpp, double lat, double lon) {
-    constexpr double kEarthRadius = 6378137.0;
-    const double south = (o.latitude_deg - lat) / kDegPerRad * kEarthRadius;
-    const double east = (lon - o.longitude_deg) / kDegPerRad * kEarthRadius * std::cos(o.latitude_deg / kDegPerRad);
+    const auto [east, south] = sim::latlon_to_local_m(o, lat, lon);
     return {east / mpp, south / mpp};
 }
 

@@ -5,6 +5,7 @@
 #include <unordered_map>
 
 #include "trn/error.hpp"
+#include "trn/io/outside_text.hpp"
 #include "trn/field_error.hpp"
 #include "trn/sim/air_format.hpp"
 
@@ -58,7 +59,7 @@ GpsComparison compare_with_gps(const LocalizationResult& result, const GpsTrack&
         sum += d, ++c.compared;
         c.final_m = d;
         c.max_m = std::isnan(c.max_m) ? d : std::max(c.max_m, d);
-        std::string name = f.filename;  // quoted as CSV when it must be
+        std::string name = io::utf8_replaced(f.filename);  // outside text (trn/io/outside_text.hpp); quoted as CSV when it must be
         if (name.find_first_of(",\"\n\r") != std::string::npos) {
             std::string q = "\"";
             for (char ch : name) q += ch == '"' ? std::string("\"\"") : std::string(1, ch);

@@ -12,6 +12,7 @@
 #include "trn/detail/angles.hpp"
 #include "trn/error.hpp"
 #include "trn/io/atomic_file.hpp"
+#include "trn/io/outside_text.hpp"
 #include "trn/io/gnuplot.hpp"
 #include "trn/io/provenance.hpp"
 #include "trn/detail/json_number.hpp"
@@ -112,7 +113,7 @@ void write_summary_json(const std::string& path, const LocalizationSummary& s, c
     io::add_provenance(j);  // what produced these numbers
     for (const auto& [k, v] : strings) j[k] = v;
     for (const auto& [k, v] : numbers) j[k] = num(v);
-    io::write_file_atomic(path, j.dump(2) + '\n');
+    io::write_file_atomic(path, io::json_text(j, 2));
 }
 
 std::string format_summary(const LocalizationSummary& s) {

@@ -12,9 +12,11 @@
 
 #include "trn/error.hpp"
 #include "trn/io/atomic_file.hpp"
+#include "trn/io/outside_text.hpp"
 #include "trn/io/input_file.hpp"
 #include "trn/io/provenance.hpp"
 #include "trn/detail/angles.hpp"
+#include "trn/sim/geodesy.hpp"
 
 namespace trn::sim {
 namespace {
@@ -118,7 +120,7 @@ struct ViewBuffer : std::streambuf {
 };
 
 // A JSON value as an error message shows it: at most kMaxQuotedChars of its text.
-std::string shown(const nlohmann::json& v) { return io::quote_input(v.dump()); }
+std::string shown(const nlohmann::json& v) { return io::quote_input(io::json_line(v)); }
 
 // Why value v of column c is implausible ("" when it is fine).
 std::string implausible(std::size_t c, double v) {
@@ -234,7 +236,7 @@ void write_flight_info(const std::string& path, const FlightInfo& info) {
     if (info.frames) j["frames"] = info.frames;
     if (!info.latlon_source.empty()) j["latlon_source"] = info.latlon_source;
     io::add_provenance(j);
-    io::write_file_atomic(path, j.dump(2) + "\n");
+    io::write_file_atomic(path, io::json_text(j, 2));
 }
 
 namespace {
@@ -293,6 +295,7 @@ FlightInfo read_flight_info(const std::string& path) {
         if (j.contains("origin"))
             info.origin = GeoOrigin{real_field(j["origin"], "latitude_deg", -90, 90, Ends::closed, where + "origin."),
                                     real_field(j["origin"], "longitude_deg", -180, 180, Ends::closed, where + "origin.")};
+        if (info.origin) check_geo_origin(*info.origin, where + "origin");
         const auto& c = j.at("camera");
         info.camera = {int_field(c, "width", 2, 16384, where + "camera."), int_field(c, "height", 2, 16384, where + "camera."),
                        real_field(c, "hfov_deg", 1, 170, Ends::open_both, where + "camera.")};
@@ -357,7 +360,7 @@ void AirWriter::write(const AirRecord& r, GrayView image, const std::vector<std:
         std::snprintf(buf, sizeof buf, kFormats[c], v);
         csv_ += buf;
     }
-    for (const std::string& e : extra) csv_ += "," + quote_if_needed(e);
+    for (const std::string& e : extra) csv_ += "," + quote_if_needed(io::utf8_replaced(e));  // outside text (a photo's name, EXIF)
     csv_ += "\n";
 }
 

@@ -4,6 +4,7 @@
 
 #include "trn/error.hpp"
 #include "trn/detail/angles.hpp"
+#include "trn/sim/geodesy.hpp"
 
 namespace trn::sim {
 
@@ -19,12 +20,7 @@ Map load_map(const std::string& path, double metres_per_pixel, std::optional<Geo
 }
 
 LatLon map_pixel_to_latlon(const Map& map, double x, double y) {
-    constexpr double kEarthRadius = 6378137.0, kDegPerRad = 180.0 / kPi;
-    const GeoOrigin o = map.origin.value_or(GeoOrigin{});
-    const double east = x * map.metres_per_pixel, south = y * map.metres_per_pixel;
-    const double lat = o.latitude_deg - south / kEarthRadius * kDegPerRad;
-    const double lon = o.longitude_deg + east / (kEarthRadius * std::cos(o.latitude_deg / kDegPerRad)) * kDegPerRad;
-    return {lat, lon};
+    return local_m_to_latlon(map.origin.value_or(GeoOrigin{}), x * map.metres_per_pixel, y * map.metres_per_pixel);
 }
 
 }  // namespace trn::sim

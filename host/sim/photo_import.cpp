@@ -12,6 +12,7 @@
 #include "trn/io/input_file.hpp"
 #include "trn/io/output_folder.hpp"
 #include "trn/sim/air_format.hpp"
+#include "trn/sim/geodesy.hpp"
 
 namespace trn::sim {
 namespace {
@@ -69,6 +70,10 @@ std::vector<std::string> list_photos(const std::string& dir) {
         if (name.empty() || name[0] == '.') continue;
         std::error_code e2;
         if (it->is_directory(e2)) continue;  // sub-folders are not photos (nor searched)
+        // Its name goes into metadata.csv, which is read line by line: a newline there would split a row.
+        if (std::any_of(name.begin(), name.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; }))
+            throw FieldError("photos", dir + "/" + io::quote_input(name) + ": a photo name with a control character (a newline would break "
+                                                                          "metadata.csv's rows); rename the photo");
         names.push_back(name);
     }
     if (ec) throw FieldError("photos", dir + ": cannot list the folder (" + ec.message() + ")");
@@ -88,40 +93,12 @@ double known_sensor_width_mm(const std::string& model) {
     return NAN;
 }
 
-PhotoImportResult import_photos(const PhotoImportOptions& o, const std::function<void(std::size_t, std::size_t)>& progress) {
-    // Options first: a missing one costs nothing.
-    if (o.out.empty()) throw FieldError("out", "required (the AIR folder to write)");
-    if (!(o.altitude_agl_m > 0 && o.altitude_agl_m <= 20000))
-        throw FieldError("altitude_agl_m", std::isnan(o.altitude_agl_m)
-                                               ? "required: the camera's height above the ground in metres (EXIF GPS altitude is above sea "
-                                                 "level and a camera's GPS altitude is unreliable, so trnkit never takes it from the photos)"
-                                               : num(o.altitude_agl_m) + " m must be in (0, 20000]");
-    if (o.sensor_width_mm != 0 && !(o.sensor_width_mm > 0 && o.sensor_width_mm <= 100))
-        throw FieldError("sensor_width_mm", num(o.sensor_width_mm) + " mm must be in (0, 100]");
-    if (o.width < 16 || o.width > 16384) throw FieldError("width", std::to_string(o.width) + " px must be in [16, 16384]");
-    std::string map_file;
-    if (!o.map.empty()) {
-        std::error_code ec;
-        if (!fs::is_regular_file(o.map, ec)) throw FieldError("map", o.map + ": not a file");
-        if (!(o.metres_per_pixel > 0) && !io::has_geotiff_extension(o.map))
-            throw FieldError("metres_per_pixel", "required with `map` " + o.map + " (not a GeoTIFF, whose georeference would give it)");
-        map_file = fs::relative(fs::absolute(o.map), fs::absolute(fs::path(o.out)).lexically_normal(), ec).generic_string();
-        if (ec || map_file.empty()) throw FieldError("map", o.map + ": no path from " + o.out + " to it (" + ec.message() + ")");
-    } else if (o.metres_per_pixel > 0 || o.map_origin) {
-        throw FieldError("map", "required with `" + std::string(o.map_origin ? "map_origin" : "metres_per_pixel") + "` (they describe the map)");
-    }
-
-    // Every photo's EXIF before anything is written.
-    const std::vector<std::string> names = list_photos(o.photos);
-    std::vector<ImportedPhoto> photos;
-    photos.reserve(names.size());
+PhotoImportResult check_photo_set(std::vector<ImportedPhoto> photos, const PhotoImportOptions& o) {
+    if (photos.empty()) throw FieldError("photos", o.photos + ": no photos in the folder");
     PhotoImportResult res;
     std::vector<std::string> rotated, without_gps;
-    for (const std::string& name : names) {
-        const std::string path = (fs::path(o.photos) / name).string();
-        ImportedPhoto p;
-        p.photo = name;
-        p.exif = io::read_photo_exif(path);
+    for (const ImportedPhoto& p : photos) {
+        const std::string path = (fs::path(o.photos) / p.photo).string();
         if (std::isnan(p.exif.time_s))
             throw Error(path + ": EXIF DateTimeOriginal is missing; import-photos orders the photos by it and times the flight with it");
         if (std::isnan(p.exif.focal_length_mm))
@@ -133,10 +110,9 @@ PhotoImportResult import_photos(const PhotoImportOptions& o, const std::function
                                      " (the photo is to be shown rotated or mirrored); trnkit does not rotate frames by it, since a camera "
                                      "looking down cannot tell which way is up. Give `ignore_orientation` to use the pixels as stored "
                                      "(the sensor's own orientation, which turns with the drone), or undo the rotation first");
-            rotated.push_back(name);
+            rotated.push_back(p.photo);
         }
-        if (!p.exif.gps) without_gps.push_back(name);
-        photos.push_back(std::move(p));
+        if (!p.exif.gps) without_gps.push_back(p.photo);
     }
     // One camera at one focal length: the AIR folder has one field of view.
     const ImportedPhoto& first = photos.front();
@@ -144,6 +120,11 @@ PhotoImportResult import_photos(const PhotoImportOptions& o, const std::function
         if (p.exif.model != first.exif.model || p.exif.make != first.exif.make)
             throw Error(o.photos + "/" + p.photo + ": taken with '" + io::quote_input(p.exif.make + " " + p.exif.model) + "', " + first.photo +
                         " with '" + io::quote_input(first.exif.make + " " + first.exif.model) + "'; import one camera's photos at a time");
+        // Frames are scored at the camera's one size: another size would be scored at the wrong scale.
+        if (p.exif.width != first.exif.width || p.exif.height != first.exif.height)
+            throw Error(o.photos + "/" + io::quote_input(p.photo) + ": " + std::to_string(p.exif.width) + "x" + std::to_string(p.exif.height) +
+                        " px, " + io::quote_input(first.photo) + " " + std::to_string(first.exif.width) + "x" + std::to_string(first.exif.height) +
+                        " px; one AIR folder has one camera size: import each size's photos separately");
         if (!same(p.exif.focal_length_mm, first.exif.focal_length_mm))
             throw Error(o.photos + "/" + p.photo + ": EXIF FocalLength " + num(p.exif.focal_length_mm) + " mm differs from " + first.photo + "'s " +
                         num(first.exif.focal_length_mm) + " mm (zoomed between photos); one AIR folder has one field of view");
@@ -178,6 +159,11 @@ PhotoImportResult import_photos(const PhotoImportOptions& o, const std::function
     if (ties) res.notes.push_back(std::to_string(ties) + " photos share their EXIF time with the one before; those are ordered by file name");
     const double t0 = photos.front().exif.time_s, span = photos.back().exif.time_s - t0;
     res.fps = photos.size() > 1 && span > 0 ? double(photos.size() - 1) / span : 1.0;
+    // flight.json's fps is at most 1000 (localize refuses more): a burst 0.1 ms apart would write one
+    // no reader takes. Refused here, before anything is written.
+    if (res.fps > 1000)
+        throw Error(o.photos + ": the " + std::to_string(photos.size()) + " photos span " + num(span, "%.3g") + " s by their EXIF times: " +
+                    num(res.fps, "%.0f") + " photos/s, more than the 1000 an AIR folder may have (a burst?); import photos at least 1 ms apart");
     if (!rotated.empty())
         res.notes.push_back(std::to_string(rotated.size()) + " photos have an EXIF Orientation other than 1 (first: " + rotated.front() +
                             "); their pixels were used as stored");
@@ -185,6 +171,52 @@ PhotoImportResult import_photos(const PhotoImportOptions& o, const std::function
         res.notes.push_back(std::to_string(without_gps.size()) + " of " + std::to_string(photos.size()) + " photos have no GPS fix (first: " +
                             without_gps.front() + "); their Latitude,Longitude are left empty");
     res.gps_fixes = photos.size() - without_gps.size();
+
+    // Field of view across the frame's width: the sensor width spans the longer side of the stored
+    // pixels (square pixels), as a sensor is wider than high. (Every photo has the same size.)
+    const io::PhotoExif& size = photos.front().exif;
+    const double across = res.sensor_width_mm * std::min(1.0, double(size.width) / std::max(size.width, size.height));
+    res.hfov_deg = 2 * std::atan(across / (2 * res.focal_length_mm)) / kDeg;
+    for (ImportedPhoto& p : photos) p.time_s = p.exif.time_s - t0;
+    res.photos = std::move(photos);
+    return res;
+}
+
+PhotoImportResult import_photos(const PhotoImportOptions& o, const std::function<void(std::size_t, std::size_t)>& progress) {
+    // Options first: a missing one costs nothing.
+    if (o.out.empty()) throw FieldError("out", "required (the AIR folder to write)");
+    if (!(o.altitude_agl_m > 0 && o.altitude_agl_m <= 20000))
+        throw FieldError("altitude_agl_m", std::isnan(o.altitude_agl_m)
+                                               ? "required: the camera's height above the ground in metres (EXIF GPS altitude is above sea "
+                                                 "level and a camera's GPS altitude is unreliable, so trnkit never takes it from the photos)"
+                                               : num(o.altitude_agl_m) + " m must be in (0, 20000]");
+    if (o.sensor_width_mm != 0 && !(o.sensor_width_mm > 0 && o.sensor_width_mm <= 100))
+        throw FieldError("sensor_width_mm", num(o.sensor_width_mm) + " mm must be in (0, 100]");
+    if (o.width < 16 || o.width > 16384) throw FieldError("width", std::to_string(o.width) + " px must be in [16, 16384]");
+    std::string map_file;
+    if (!o.map.empty()) {
+        std::error_code ec;
+        if (!fs::is_regular_file(o.map, ec)) throw FieldError("map", o.map + ": not a file");
+        if (!(o.metres_per_pixel > 0) && !io::has_geotiff_extension(o.map))
+            throw FieldError("metres_per_pixel", "required with `map` " + o.map + " (not a GeoTIFF, whose georeference would give it)");
+        map_file = fs::relative(fs::absolute(o.map), fs::absolute(fs::path(o.out)).lexically_normal(), ec).generic_string();
+        if (ec || map_file.empty()) throw FieldError("map", o.map + ": no path from " + o.out + " to it (" + ec.message() + ")");
+        if (o.map_origin)
+            if (const std::string why = geo_origin_problem(*o.map_origin); !why.empty()) throw FieldError("map_origin", why);
+    } else if (o.metres_per_pixel > 0 || o.map_origin) {
+        throw FieldError("map", "required with `" + std::string(o.map_origin ? "map_origin" : "metres_per_pixel") + "` (they describe the map)");
+    }
+
+    // Every photo's EXIF before anything is written, checked as a set.
+    std::vector<ImportedPhoto> read;
+    for (const std::string& name : list_photos(o.photos)) {
+        ImportedPhoto p;
+        p.photo = name;
+        p.exif = io::read_photo_exif((fs::path(o.photos) / name).string());
+        read.push_back(std::move(p));
+    }
+    PhotoImportResult res = check_photo_set(std::move(read), o);
+    std::vector<ImportedPhoto>& photos = res.photos;
 
     // The folder, built whole beside its target.
     io::StagedFolder staged(o.out, "import-photos", o.force);
@@ -195,7 +227,6 @@ PhotoImportResult import_photos(const PhotoImportOptions& o, const std::function
         ImportedPhoto& p = photos[i];
         std::snprintf(frame_name, sizeof frame_name, "frame_%05zu.png", i);
         p.frame = frame_name;
-        p.time_s = p.exif.time_s - t0;
         const GrayImage frame = io::load_photo_gray((fs::path(o.photos) / p.photo).string(), o.width);
         if (i == 0) res.frame_width = frame.width, res.frame_height = frame.height;
         AirRecord r;
@@ -211,10 +242,6 @@ PhotoImportResult import_photos(const PhotoImportOptions& o, const std::function
     }
     writer.close();
 
-    // Field of view across the frame's width: the sensor width spans the longer side of the stored
-    // pixels (square pixels), as a sensor is wider than high.
-    const double across = res.sensor_width_mm * std::min(1.0, double(first.exif.width) / std::max(first.exif.width, first.exif.height));
-    res.hfov_deg = 2 * std::atan(across / (2 * res.focal_length_mm)) / kDeg;
     FlightInfo info;
     info.scenario = "photos " + o.photos + " (" + res.camera + ")";
     info.map_file = map_file;
@@ -227,7 +254,6 @@ PhotoImportResult import_photos(const PhotoImportOptions& o, const std::function
     info.latlon_source = kLatLonCameraGps;
     write_flight_info(dir + "/flight.json", info);
     staged.commit();
-    res.photos = std::move(photos);
     return res;
 }
 

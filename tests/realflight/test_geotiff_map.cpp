@@ -4,8 +4,11 @@
 // (NOT AVAILABLE), and a .tif map is refused by name.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <optional>
+#include <sstream>
 
 #include "real_air_fixture.hpp"
 #include "trn/error.hpp"
@@ -34,7 +37,7 @@ constexpr double kMpp = 0.5;
 #ifdef TRN_HAVE_GDAL
 enum class Georef { utm32n, rotated, no_crs };
 
-void write_geotiff(const std::string& path, const trn::GrayImage& image, Georef how) {
+void write_geotiff(const std::string& path, const trn::GrayImage& image, Georef how, std::optional<int> nodata = std::nullopt) {
     GDALAllRegister();
     GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GTiff");
     ASSERT_NE(driver, nullptr);
@@ -49,6 +52,7 @@ void write_geotiff(const std::string& path, const trn::GrayImage& image, Georef 
         ASSERT_EQ(srs.importFromEPSG(32632), OGRERR_NONE);
         ds->SetSpatialRef(&srs);
     }
+    if (nodata) ASSERT_EQ(ds->GetRasterBand(1)->SetNoDataValue(*nodata), CE_None);
     ASSERT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, image.width, image.height, const_cast<std::uint8_t*>(image.pixels.data()),
                                              image.width, image.height, GDT_Byte, 0, 0),
               CE_None);
@@ -149,6 +153,41 @@ TEST(GeoTiffMap, VrtAndVirtualPathsAreNotOpened) {
             EXPECT_EQ(std::string(e.what()).find(path), 0u) << e.what();
         }
     }
+}
+
+// Issue 45, class 8: score and register read a GeoTIFF's no-data as localize does (its nodata
+// value, alpha or mask band); they read it through OpenCV, which ignores all three.
+TEST(GeoTiffMap, ScoreHonoursTheNodataValueAsLocalizeDoes) {
+    SKIP_WITHOUT_GDAL();
+#ifdef TRN_HAVE_GDAL
+    trn::GrayImage img = texture(200, 150);
+    for (int y = 0; y < 150; ++y)
+        for (int x = 0; x < 200; ++x) {
+            std::uint8_t& p = img.pixels[std::size_t(y) * 200 + x];
+            p = x < 100 ? 0 : std::max<std::uint8_t>(p, 1);  // the west half the nodata value, the east half never
+        }
+    const std::string map = temp("nodata.tif"), templ = temp("nodata_templ.png"), poses = temp("nodata_poses.csv"), out = temp("nodata_out.csv");
+    write_geotiff(map, img, Georef::utm32n, 0);
+    trn::GrayImage t{32, 24, std::vector<std::uint8_t>(32 * 24)};
+    for (int y = 0; y < 24; ++y)
+        for (int x = 0; x < 32; ++x) t.pixels[std::size_t(y) * 32 + x] = img.pixels[std::size_t(y + 60) * 200 + x + 140];
+    trn::save_gray(templ, t.view());
+    std::ofstream(poses) << "x,y,yaw,scale\n155.5,71.5,0,1\n50,75,0,1\n";
+    const auto r = run_trnkit("score --map " + map + " --template " + templ + " --poses " + poses + " --backend cpu -o " + out);
+    ASSERT_EQ(r.code, 0) << r.output;
+    std::ifstream in(out);
+    std::string header, on_data, on_nodata;
+    std::getline(in, header), std::getline(in, on_data), std::getline(in, on_nodata);
+    auto valid_samples = [](const std::string& row) {
+        std::vector<std::string> cells;
+        std::stringstream ss(row);
+        for (std::string c; std::getline(ss, c, ',');) cells.push_back(c);
+        return cells.size() > 8 ? std::stol(cells[8]) : -1L;
+    };
+    EXPECT_EQ(valid_samples(on_data), 32 * 24) << on_data;
+    EXPECT_EQ(valid_samples(on_nodata), 0) << on_nodata;  // every sample on the nodata value: left out
+    for (const auto& f : {map, templ, poses, out}) std::remove(f.c_str());
+#endif
 }
 
 TEST(GeoTiffMap, WithoutGdalATifMapIsRefusedNamingTheFile) {

@@ -39,6 +39,10 @@ protected:
         cv::randu(noise, 0, 255);
         cv::resize(noise, map_, cv::Size(600, 400), 0, 0, cv::INTER_CUBIC);
         cv::imwrite(path("map.png"), map_);
+        make_photos(path("photos"), "Canon PowerShot SX260 HS");
+    }
+    // The 5 photos into `folder`, taken with a camera of that model.
+    void make_photos(const std::string& folder, const std::string& model) const {
         trn::sim::Map frame;
         frame.metres_per_pixel = kMpp, frame.origin = kOrigin;
         for (int i = 0; i < 5; ++i) {
@@ -49,8 +53,8 @@ protected:
             const trn::sim::LatLon ll = trn::sim::map_pixel_to_latlon(frame, cx, cy);
             char t[32];
             std::snprintf(t, sizeof t, "2020:05:01 10:00:%02d", 2 * i);
-            trn::test::write_test_photo(path("photos/IMG_" + std::to_string(100 + i) + ".jpg"), colour,
-                                        TestExif{}.set("Exif.Photo.DateTimeOriginal", t).gps(ll.latitude_deg, ll.longitude_deg));
+            trn::test::write_test_photo(folder + "/IMG_" + std::to_string(100 + i) + ".jpg", colour,
+                                        TestExif{}.set("Exif.Photo.DateTimeOriginal", t).set("Exif.Image.Model", model).gps(ll.latitude_deg, ll.longitude_deg));
         }
     }
     void TearDown() override { fs::remove_all(dir_); }
@@ -321,4 +325,109 @@ TEST_F(RealFlight2PhotoCli, TheFourRealPhotosRunEndToEnd) {
     const nlohmann::json j = nlohmann::json::parse(read_text(path("air/localize/summary.json")));
     EXPECT_EQ(j["steps"], 4);
     EXPECT_EQ(j["odometry"].get<std::string>().rfind("visual", 0), 0u) << j["odometry"];
+}
+
+namespace {
+// Whether `text` is valid UTF-8 (nlohmann's parser refuses anything else).
+bool parses_as_json(const std::string& text) { return !nlohmann::json::parse(text, nullptr, false).is_discarded(); }
+}  // namespace
+
+// Issue 45, class 4: bytes that are not UTF-8 in an EXIF model, a photo folder's and a dataset
+// folder's name reach flight.json, metadata.csv and summary.json as U+FFFD; neither command exits 2
+// (import-photos did, after staging its frames; localize after the whole run, without summary.json).
+TEST_F(PhotoCli, TextThatIsNotUtf8BecomesReplacementCharacters) {
+    const std::string photos = path("ph\xff\xfeotos"), air = path("air\xfe"), loc = path("loc\xff");
+    fs::create_directories(photos);
+    make_photos(photos, "Cam\xff\xc3(");
+    auto r = run_trnkit("import-photos '" + photos + "' --out '" + air + "' --width 160 --altitude-agl 58.34 --sensor-width-mm 6.17 --map " +
+                        path("map.png") + " --mpp 0.5 --map-origin 30.17,-98.09");
+    ASSERT_EQ(r.code, 0) << r.output;
+    const std::string flight = read_text(air + "/flight.json");
+    ASSERT_TRUE(parses_as_json(flight)) << flight;
+    EXPECT_HAS(nlohmann::json::parse(flight)["scenario"].get<std::string>(), "ph\xEF\xBF\xBD\xEF\xBF\xBDotos");
+    EXPECT_HAS(nlohmann::json::parse(flight)["scenario"].get<std::string>(), "Cam\xEF\xBF\xBD\xEF\xBF\xBD(");
+
+    // A frame file name that is not UTF-8 (metadata.csv's Filename) reaches gps_track.csv the same way.
+    std::string metadata = read_text(air + "/metadata.csv");
+    metadata.replace(metadata.find("frame_00000.png"), 15, "fr\xffme_00000.png");
+    std::ofstream(air + "/metadata.csv", std::ios::trunc) << metadata;
+    fs::rename(air + "/frame_00000.png", air + "/fr\xffme_00000.png");
+
+    r = run_trnkit("localize --dataset '" + air + "' --odometry visual --start-from-gps 15 --backend cpu --no-plots --out '" + loc + "'");
+    ASSERT_EQ(r.code, 0) << r.output;
+    const std::string track = read_text(loc + "/gps_track.csv");
+    EXPECT_HAS(track, ",fr\xEF\xBF\xBDme_00000.png,");
+    const std::string summary = read_text(loc + "/summary.json");
+    EXPECT_TRUE(parses_as_json(summary)) << summary;
+}
+
+// Issue 45, class 6: a photo name with a newline would split metadata.csv's row (localize then
+// could not read the folder): refused at import, naming it escaped.
+TEST_F(PhotoCli, PhotoNameWithANewlineIsRefused) {
+    fs::rename(path("photos/IMG_102.jpg"), path("photos/IMG\n102.jpg"));
+    const auto r = run_trnkit(import_args());
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_HAS(r.output, "IMG\\n102.jpg: a photo name with a control character");
+    EXPECT_FALSE(fs::exists(path("air")));
+}
+
+// Issue 45, class 6: photos of another size in one folder were imported under one camera and
+// scored at the wrong scale; refused, naming both.
+TEST_F(PhotoCli, PhotosOfMixedSizesAreRefused) {
+    const cv::Mat pixels = cv::imread(path("photos/IMG_104.jpg"));
+    cv::Mat resized;
+    cv::resize(pixels, resized, cv::Size(800, 600));
+    trn::test::write_test_photo(path("photos/IMG_104.jpg"), resized, TestExif{}.set("Exif.Photo.DateTimeOriginal", "2020:05:01 10:00:08"));
+    const auto r = run_trnkit(import_args());
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_HAS(r.output, "IMG_104.jpg: 800x600 px, IMG_100.jpg 640x480 px; one AIR folder has one camera size");
+    EXPECT_FALSE(fs::exists(path("air")));
+}
+
+// Issue 45, class 7: `localize --photos` checks the map and the start before the import replaces
+// --dataset (it replaced an earlier import, then refused the map).
+TEST_F(PhotoCli, LocalizePhotosChecksTheMapAndStartBeforeReplacingTheDataset) {
+    auto r = run_trnkit(import_args());
+    ASSERT_EQ(r.code, 0) << r.output;
+    const std::string before = read_text(path("air/metadata.csv"));
+    fs::remove(path("photos/IMG_104.jpg"));  // another import would write 4 rows
+    std::ofstream(path("notes.png")) << "a file, but no image";
+    const std::string base = "localize --photos " + path("photos") + " --dataset " + path("air") + " --altitude-agl 58 --backend cpu --no-plots";
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {base + " --map " + path("nomap.png") + " --mpp 0.5 --start 200,200", "--map " + path("nomap.png") + ": no such file"},
+        {base + " --map " + path("notes.png") + " --mpp 0.5 --start 200,200", "--map " + path("notes.png") + ": not a readable image"},
+        {base + " --map " + path("map.png") + " --mpp 0.5 --start 700,200", "--start 700,200: map pixel 700.000000,200.000000 is outside the 600x400 px map"},
+    };
+    for (const auto& [args, expect] : cases) {
+        r = run_trnkit(args);
+        EXPECT_EQ(r.code, 1) << args << "\n" << r.output;
+        EXPECT_HAS(r.output, expect);
+        EXPECT_EQ(read_text(path("air/metadata.csv")), before) << args << ": the dataset was replaced before the error";
+    }
+}
+
+// Issue 45, class 6: --map-origin at a pole (the local projection divides by cos(latitude)):
+// 90,180 was accepted and gave longitudes of 6e13 degrees; refused by the option, naming why.
+TEST_F(PhotoCli, MapOriginAtAPoleIsRefused) {
+    const auto r = run_trnkit(import_args() + " --map " + path("map.png") + " --mpp 0.5 --map-origin 90,180");
+    EXPECT_NE(r.code, 0) << r.output;
+    EXPECT_HAS(r.output, "--map-origin");
+    EXPECT_HAS(r.output, "latitude 90 deg is not within +-85 deg");
+    EXPECT_FALSE(fs::exists(path("air")));
+}
+
+// Issue 45, class 6: burst photos 0.1 ms apart wrote an fps (10000) that localize then refused;
+// the import refuses it first, saying why.
+TEST_F(PhotoCli, BurstPhotosTooCloseInTimeAreRefusedAtImport) {
+    for (int i = 0; i < 5; ++i) {
+        const std::string name = path("photos/IMG_" + std::to_string(100 + i) + ".jpg");
+        const cv::Mat pixels = cv::imread(name);
+        trn::test::write_test_photo(name, pixels, TestExif{}.set("Exif.Photo.DateTimeOriginal", "2020:05:01 10:00:00")
+                                                      .set("Exif.Photo.SubSecTimeOriginal", "000" + std::to_string(i)));
+    }
+    const auto r = run_trnkit(import_args());
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_HAS(r.output, "the 5 photos span 0.0004 s by their EXIF times: ");
+    EXPECT_HAS(r.output, " photos/s, more than the 1000 an AIR folder may have (a burst?)");
+    EXPECT_FALSE(fs::exists(path("air")));
 }

@@ -155,6 +155,34 @@ TEST_F(LimitFiles, ImageFilesAreMeasuredFromTheirHeaderBeforeDecoding) {
                "bomb.png: image 40000x40000 needs ~3.2 GB (limit 1073741824 pixels, e.g. 32768x32768)");
 }
 
+// A JPEG that is only a frame header (SOFn) claiming w x h with three components sampled hv each.
+void write_jpeg_header(const std::string& path, unsigned char sof, std::uint32_t w, std::uint32_t h, unsigned char luma_hv) {
+    const unsigned char b[] = {0xFF, 0xD8, 0xFF, sof, 0, 17, 8, static_cast<unsigned char>(h >> 8), static_cast<unsigned char>(h),
+                               static_cast<unsigned char>(w >> 8), static_cast<unsigned char>(w), 3, 1, luma_hv, 0, 2, 0x11, 1, 3, 0x11, 1,
+                               0xFF, 0xD9};
+    std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(b), sizeof b);
+}
+
+// Issue 45: libjpeg decodes a progressive JPEG into a buffer of every DCT coefficient first (2 B per
+// pixel of each component): a 2.7 KB file claiming 32768x32767 took 7.4 GB as a map. Its header
+// passed at 2 B/px; the coefficients are now counted before any decoder runs.
+TEST_F(LimitFiles, ProgressiveJpegCountsItsCoefficientBuffer) {
+    write_jpeg_header(path("progressive.jpg"), 0xC2, 32768, 32767, 0x11);
+    EXPECT_HAS(fast_error([&] { load_gray(path("progressive.jpg")); }),
+               "progressive.jpg: image 32768x32767 (progressive JPEG) needs ~8.6 GB to decode (limit 2.1 GB per image)");
+    write_jpeg_header(path("progressive420.jpg"), 0xC2, 32768, 32767, 0x22);  // 4:2:0: 2 + 2 x 1.5 B/px
+    EXPECT_HAS(fast_error([&] { load_gray(path("progressive420.jpg")); }), "(progressive JPEG) needs ~5.4 GB to decode");
+    write_jpeg_header(path("baseline.jpg"), 0xC0, 32768, 32767, 0x11);  // decoded a row band at a time: 2 B/px
+    const ImageSize baseline = check_image_file(path("baseline.jpg"));
+    EXPECT_EQ(baseline.decode_bytes_per_pixel, 2);
+    // A real progressive JPEG still loads, measured as one.
+    const test::PaddedGray gray = test::textured_image(64, 48, 4);  // mat() wraps its pixels: kept alive
+    const cv::Mat img = gray.mat();
+    ASSERT_TRUE(cv::imwrite(path("real.jpg"), img, {cv::IMWRITE_JPEG_PROGRESSIVE, 1}));
+    EXPECT_STREQ(check_image_file(path("real.jpg")).format, "progressive JPEG");
+    EXPECT_EQ(load_gray(path("real.jpg")).width, 64);
+}
+
 TEST_F(LimitFiles, HeaderSizesMatchWhatOpenCvWrites) {
     const test::PaddedGray gray = test::textured_image(37, 23, 4);
     const cv::Mat img = gray.mat();

@@ -70,6 +70,13 @@ void check_output_file(const std::string& path, const std::string& option = "");
 void check_output_is_not_input(const std::string& path, const std::string& option,
                                const std::vector<std::pair<std::string, std::string>>& inputs);
 
+// A file that only grows, one whole record per append (the results store): opened for reading and
+// appending (O_APPEND, created 0644 when absent) without following a symbolic link at the name and
+// without blocking on a FIFO; a link, a non-regular file or a file with another hard link is
+// refused, naming `what` ("the results store"). Returns the descriptor (the caller closes it).
+// Appending, not replacing, is what lets parallel jobs share one file; hence not write_file_atomic.
+int open_for_append(const std::string& path, const std::string& what);
+
 // A temporary name next to `path` (same folder, so rename() stays on one file system).
 std::string temporary_sibling(const std::string& path);
 

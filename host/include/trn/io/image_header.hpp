@@ -17,7 +17,16 @@ struct ImageSize {
     double decode_bytes_per_pixel = 2;
     std::uint64_t decode_extra_bytes = 0;
     const char* format = "";  // "PNG", "Radiance HDR", ...
+    // What the no-data reader (load_validity) decodes at full depth, from the header where it says
+    // (PNG, JPEG, TIFF); otherwise the most it may be (4 channels of 16 bits, alpha possible).
+    int channels = 4, bits_per_sample = 16;
+    bool alpha_possible = true;  // an alpha channel or PNG transparency (tRNS): a mask to read
+    int transparent_grey = -1;   // a grey PNG's tRNS value (at its bit depth); -1: none
 };
+
+// Bytes load_validity's full-depth decode of such an image takes: the decoded pixels, their high
+// bytes when 16-bit, and the mask.
+double validity_decode_bytes(const ImageSize& size);
 
 // Most bytes decoding one image file may take (2 GiB: a 2^30-pixel 8-bit map at 2 B/px), whatever
 // its format: a 32768x32768 Radiance HDR (12 B/px of floats) is refused before OpenCV sees it.

@@ -64,6 +64,14 @@ struct PhotoImportResult {
     std::vector<std::string> notes;     // what the user should know (photos reordered, fixes missing ...)
 };
 
+// The checks and facts of a set of photos from their EXIF alone, import_photos's first half: each
+// has DateTimeOriginal and FocalLength (and Orientation 1 unless ignore_orientation), all come from
+// one camera at one focal length and one size, at most 1000 photos/s; the sensor width (given, the
+// table's, or EXIF's FocalPlaneXResolution), the field of view, the photo rate, the GPS fixes and
+// the notes. Returns them with `photos` in time order (time_s set). `options.photos` names the
+// folder in messages. Throws as import_photos does.
+PhotoImportResult check_photo_set(std::vector<ImportedPhoto> photos, const PhotoImportOptions& options);
+
 // Reads every photo's EXIF first (a photo the import cannot use fails before any frame is made),
 // then writes the frames, metadata.csv and flight.json. `progress(done, total)` after each frame.
 PhotoImportResult import_photos(const PhotoImportOptions& options, const std::function<void(std::size_t, std::size_t)>& progress = {});
