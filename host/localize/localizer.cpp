@@ -5,6 +5,7 @@
 
 #include "trn/error.hpp"
 #include "trn/sim/camera.hpp"
+#include "trn/sim/geodesy.hpp"
 
 namespace trn::localize {
 namespace {
@@ -42,9 +43,7 @@ void LocalizerConfig::validate() const {
     if (!std::isnan(camera_hfov_deg) && !(camera_hfov_deg > 0 && camera_hfov_deg < 180))
         throw Error("localizer config: camera_hfov_deg must be in (0, 180) degrees, got " + number(camera_hfov_deg));
     if (!(max_tilt_deg >= 0 && max_tilt_deg < 90)) throw Error("localizer config: max_tilt_deg must be in [0, 90)");
-    if (map_origin && !(std::fabs(map_origin->latitude_deg) < 90 && std::fabs(map_origin->longitude_deg) <= 180))
-        throw Error("localizer config: map_origin must be a latitude in (-90, 90) and a longitude in [-180, 180] degrees, got " +
-                    number(map_origin->latitude_deg) + ", " + number(map_origin->longitude_deg));
+    if (map_origin) sim::check_geo_origin(*map_origin, "localizer config: map_origin");  // the geodesy home's rule
     if (scoring.template_width < 0) throw Error("localizer config: scoring.template_width must be >= 0 (0: full width)");
 }
 
