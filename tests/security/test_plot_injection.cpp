@@ -3,6 +3,7 @@
 // Entry points: `trnkit localize` (flight.json `scenario`, a dataset folder whose name holds a
 // newline), `trnkit energy integrate --platform ... --plot`, `trnkit energy compare` (the
 // `platform` field of run reports) and the experiments' line_plot.
+#include <algorithm>
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -40,6 +41,18 @@ std::vector<std::string> text_payloads(const std::string& canary) {
         } catch (const nlohmann::json::exception&) {
         }
     }
+    return out;
+}
+
+// The payloads a label may hold: since issue 46 a label with a control character (a line break
+// would split a CSV row or a gnuplot line) is refused up front (energy/label_check.hpp), so those are
+// tested as refusals, the rest as inert text.
+bool has_control_character(const std::string& p) {
+    return std::any_of(p.begin(), p.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; });
+}
+std::vector<std::string> label_payloads(const std::string& canary) {
+    std::vector<std::string> out = text_payloads(canary);
+    std::erase_if(out, has_control_character);
     return out;
 }
 
@@ -85,7 +98,16 @@ EnergyRun write_energy_run(const std::string& dir) {
 
 TEST_F(PlotInjection, EnergyIntegratePlatformOption) {
     const EnergyRun run = write_energy_run(dir_.string());
-    const auto payloads = text_payloads(canary_);
+    const auto payloads = label_payloads(canary_);
+    ASSERT_FALSE(payloads.empty());
+    for (const std::string& p : text_payloads(canary_)) {
+        if (!has_control_character(p)) continue;
+        const ProcessResult refused = trnkit({"energy", "integrate", run.log, "--markers", run.markers, "--offset=" + run.offset, "--platform", p,
+                                              "--json", path("refused.json")});
+        EXPECT_EQ(refused.code, 1) << "a platform with a control character is refused up front\n" << refused.output;
+        EXPECT_NE(refused.output.find("control character"), std::string::npos) << refused.output;
+    }
+    expect_no_canary();
     std::string all;  // every payload in one label (each one alone meets the real gnuplot in the unit test)
     for (const std::string& p : payloads) all += p + " | ";
     int k = 0;
@@ -117,7 +139,7 @@ TEST_F(PlotInjection, EnergyIntegratePlotPathIsNeverPastedIntoTheScript) {
 }
 
 TEST_F(PlotInjection, EnergyComparePlatformFieldOfRunReports) {
-    const auto payloads = text_payloads(canary_);
+    const auto payloads = label_payloads(canary_);
     std::vector<std::string> args = {"energy", "compare"};
     for (std::size_t k = 0; k < payloads.size(); ++k) {
         const auto tl = make_timeline(6, 0.05, 0.05);
