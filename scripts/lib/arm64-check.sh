@@ -31,18 +31,21 @@ compare_cases() {
     local backend=$b env=()
     [[ $b == cpu-portable ]] && backend=cpu env=(TRN_CPU_SIMD=off)
     env "${env[@]}" "$trnkit" score --backend "$backend" --map "$data/orthophoto.png" --template "$data/realflight/frame_00000.png" \
-      --poses "$dir/poses.csv" -o "$dir/score-dense-$b.csv" 2>/dev/null || echo "FAILED" > "$dir/score-dense-$b.csv"
+      --min-valid 0 --poses "$dir/poses.csv" -o "$dir/score-dense-$b.csv" 2>/dev/null || echo "FAILED" > "$dir/score-dense-$b.csv"
     env "${env[@]}" "$trnkit" score --backend "$backend" --map "$data/orthophoto.png" --template "$data/realflight/frame_00003.png" \
-      --sampling random:0.25:7 --poses "$dir/poses.csv" -o "$dir/score-sparse-$b.csv" 2>/dev/null || echo "FAILED" > "$dir/score-sparse-$b.csv"
+      --sampling random:0.25:7 --min-valid 0 --poses "$dir/poses.csv" -o "$dir/score-sparse-$b.csv" 2>/dev/null || echo "FAILED" > "$dir/score-sparse-$b.csv"
     # A map with no-data (transparent): the masked samplers.
     env "${env[@]}" "$trnkit" score --backend "$backend" --map "$data/realflight2/orthomosaic.png" \
-      --template "$data/realflight2/frames/frame_00000.png" --poses "$dir/poses2.csv" -o "$dir/score-nodata-$b.csv" 2>/dev/null ||
+      --template "$data/realflight2/frames/frame_00000.png" --min-valid 0 --poses "$dir/poses2.csv" -o "$dir/score-nodata-$b.csv" 2>/dev/null ||
       echo "FAILED" > "$dir/score-nodata-$b.csv"
   done
   for b in cpu-ref cpu; do
     rm -rf "$dir/localize-$b"
     "$trnkit" localize --dataset "$flight" --backend "$b" --seed 3 --max-particles 400 --out "$dir/localize-$b" >/dev/null 2>&1 || true
-    cp "$dir/localize-$b/localization.csv" "$dir/localize-$b.csv" 2>/dev/null || echo "FAILED" > "$dir/localize-$b.csv"
+    # Every column but the step's times (score_ms, step_ms: wall clock).
+    awk -F, -v OFS=, 'NR == 1 { for (i = 1; i <= NF; ++i) keep[i] = $i != "score_ms" && $i != "step_ms" }
+                      { line = ""; for (i = 1; i <= NF; ++i) if (keep[i]) line = line (line == "" ? "" : OFS) $i; print line }' \
+      "$dir/localize-$b/localization.csv" > "$dir/localize-$b.csv" 2>/dev/null || echo "FAILED" > "$dir/localize-$b.csv"
   done
 }
 
