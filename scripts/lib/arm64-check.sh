@@ -63,9 +63,10 @@ arm64_check() {
   export QEMU_LD_PREFIX=$root
   # Under qemu-user the Vulkan loader's own search finds no ICD: lavapipe named (a path in the root).
   export VK_DRIVER_FILES=/usr/share/vulkan/icd.d/lvp_icd.aarch64.json
+  mkdir -p "$build"
   "$cmake_exe" -S "$repo" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_TOOLCHAIN_FILE="$repo/cmake/aarch64-linux-gnu.cmake" \
     -DTRN_AARCH64_SYSROOT="$root" -DTRN_WITH_CUDA=OFF -DTRN_BUILD_BENCH=OFF -DCMAKE_DISABLE_FIND_PACKAGE_Python3=ON \
-    -DTRN_REQUIRE_BACKENDS="opencl;vulkan" > "$build.configure.log" 2>&1 || { cat "$build.configure.log" >&2; exit 1; }
+    -DTRN_REQUIRE_BACKENDS="opencl;vulkan" > "$build/platform-check-configure.log" 2>&1 || { cat "$build/platform-check-configure.log" >&2; exit 1; }
   build_checked --target "${arm64_targets[@]}"
   # PoCL apart: under qemu-user 7.2 it aborts before its first kernel, since it looks for its kernel
   # library with access(), which qemu-user does not redirect into the root (open and stat it does).
