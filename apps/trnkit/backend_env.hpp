@@ -4,7 +4,7 @@
 // mains read the same variables through tests/common/backend_env.hpp.
 //   TRN_OPENCL_DEVICE, TRN_VULKAN_DEVICE     device when only the family is named (index or name text)
 //   TRN_CPU_THREADS=N                        worker threads of the cpu backend (default: hardware threads)
-//   TRN_CPU_SIMD=off                         portable inner loop instead of AVX2
+//   TRN_CPU_SIMD=off                         portable inner loop instead of AVX2 / NEON
 //   TRN_OPENCL_WORK_GROUP=N                  NCC work-group size (power of two)
 //   TRN_OPENCL_CACHE=0                       no program binary cache ($XDG_CACHE_HOME/trnkit/opencl,
 //                                            else ~/.cache/trnkit/opencl)

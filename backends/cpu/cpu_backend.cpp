@@ -3,6 +3,7 @@
 // scores equal cpu-ref's bit for bit.
 #include "cpu_backend.hpp"
 #include "ncc_rows.hpp"
+#include "row_kernels.hpp"
 #include "thread_pool.hpp"
 #include "trn/impl/cell_mask.hpp"
 #include "trn/impl/particle_sums.hpp"
@@ -144,12 +145,11 @@ int thread_count(const BackendOptions::Cpu& options) {
 
 class CpuBackend final : public Backend {
 public:
-    // AVX2 when the processor has it, unless options.simd is off (to test and compare the portable path).
-    explicit CpuBackend(const BackendOptions::Cpu& options)
-        : use_avx2_(cpu::avx2_available() && options.simd), pool_(thread_count(options)) {
+    // AVX2 or NEON when the processor has it, unless options.simd is off (to test and compare the portable path).
+    explicit CpuBackend(const BackendOptions::Cpu& options) : kernels_(cpu::row_kernels(options.simd)), pool_(thread_count(options)) {
         info_ = {"cpu", "cpu", "optimized C++ (thread pool)", "cpu", "trnkit",
                  std::to_string(pool_.threads()) + " threads (TRN_CPU_THREADS), " + std::to_string(std::thread::hardware_concurrency()) +
-                     " hardware threads, inner loop " + (use_avx2_ ? "AVX2" : "portable") + " (TRN_CPU_SIMD=off forces portable)"};
+                     " hardware threads, inner loop " + kernels_.name + " (TRN_CPU_SIMD=off forces portable)"};
     }
     const DeviceInfo& info() const override { return info_; }
 
@@ -218,15 +218,12 @@ private:
         auto accumulate = [&](const cpu::RowSums& r) {
             sums.n += r.n, sums.sj += r.sj, sums.sjj += r.sjj, sums.sjt += r.sjt, sums.st += r.st, sums.stt += r.stt;
         };
-        // Inside: every sample on the map and on a valid cell; else each is tested (AVX2: in lanes).
-        auto add = [&](const cpu::RowInput& row) {
-            accumulate(use_avx2_ ? (inside ? cpu::sample_row_inside_avx2(pixels, row) : cpu::sample_row_checked_avx2(pixels, row))
-                                 : (inside ? cpu::sample_row_inside(pixels, row) : cpu::sample_row_checked(pixels, row)));
-        };
+        // Inside: every sample on the map and on a valid cell; else each is tested (SIMD: in lanes).
+        auto add = [&](const cpu::RowInput& row) { accumulate(inside ? kernels_.inside(pixels, row) : kernels_.checked(pixels, row)); };
         const std::size_t count = du_.size();
         constexpr int kChunk = 512;  // sparse: samples per call of the row sampler
         const int total = static_cast<int>(count);
-        if (!plan.dense && use_avx2_) {  // positions computed in registers, nothing precomputed
+        if (!plan.dense && kernels_.sparse_from_affine) {  // positions computed in registers, nothing precomputed
             for (int k = 0; k < total; k += kChunk) {
                 cpu::RowInput row{nullptr, nullptr, 0, 0, nullptr, nullptr, plan.quantized.data() + k, std::min(kChunk, total - k)};
                 row.du = du_.data() + k, row.dv = dv_.data() + k;
@@ -268,9 +265,9 @@ private:
                 if (inside)
                     add(row);
                 else if (tiled)
-                    accumulate(cpu::sample_row_tiles(pixels, row, use_avx2_, prefix, std::size_t(v) * w, scratch.tiles.data()));
+                    accumulate(cpu::sample_row_tiles(pixels, row, kernels_, prefix, std::size_t(v) * w, scratch.tiles.data()));
                 else  // over the map's edge: each row's run of samples on the map
-                    accumulate(cpu::sample_row_clipped(pixels, row, use_avx2_, prefix, std::size_t(v) * w));
+                    accumulate(cpu::sample_row_clipped(pixels, row, kernels_, prefix, std::size_t(v) * w));
             }
         } else {
             for (std::size_t k = 0; k < count; ++k) {
@@ -285,7 +282,7 @@ private:
     }
 
     DeviceInfo info_;
-    bool use_avx2_;
+    const cpu::RowKernels& kernels_;
     cpu::ThreadPool pool_;
     std::vector<float> du_, dv_;
     std::int64_t st_ = 0, stt_ = 0;

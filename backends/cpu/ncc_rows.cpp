@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include "row_kernels.hpp"
 #include "trn/fixed_point.hpp"
 
 namespace trn::cpu {
@@ -52,7 +53,8 @@ RowSums sample_row(const MapPixels& m, const RowInput& row) {
 RowSums sample_row_checked(const MapPixels& m, const RowInput& row) { return sample_row<true>(m, row); }
 RowSums sample_row_inside(const MapPixels& m, const RowInput& row) { return sample_row<false>(m, row); }
 
-RowSums sample_row_clipped(const MapPixels& m, const RowInput& row, bool vector, const TemplatePrefix& prefix, std::size_t first_sample) {
+RowSums sample_row_clipped(const MapPixels& m, const RowInput& row, const RowKernels& kernels, const TemplatePrefix& prefix,
+                           std::size_t first_sample) {
     const float xmax = float(m.width - 1), ymax = float(m.height - 1);
     auto inside = [&](int k) { return on_map(row.ax[k] + row.bdv, row.ay[k] + row.ddv, xmax, ymax); };  // the same rounded position
     int first = 0, end = row.count;
@@ -62,7 +64,7 @@ RowSums sample_row_clipped(const MapPixels& m, const RowInput& row, bool vector,
     run.ax += first, run.ay += first, run.t += first, run.count = end - first;
     RowSums r;
     if (run.count == 0) return r;
-    r = vector ? sample_row_inside_avx2(m, run) : sample_row_inside(m, run);
+    r = kernels.inside(m, run);
     const std::size_t k0 = first_sample + std::size_t(first), k1 = first_sample + std::size_t(end);
     r.n = run.count;
     r.st = prefix.st[k1] - prefix.st[k0];
@@ -90,9 +92,9 @@ Tile judge_tile(const MapPixels& m, const float (&px)[4], const float (&py)[4]) 
     return cells == CellBlocks::kAllValid ? Tile::kAllValid : Tile::kSomeOnMap;
 }
 
-RowSums sample_row_tiles(const MapPixels& m, const RowInput& row, bool vector, const TemplatePrefix& prefix, std::size_t first_sample,
-                         const Tile* tiles) {
-    if (vector) return sample_row_tiles_avx2(m, row, prefix, first_sample, tiles);
+RowSums sample_row_tiles(const MapPixels& m, const RowInput& row, const RowKernels& kernels, const TemplatePrefix& prefix,
+                         std::size_t first_sample, const Tile* tiles) {
+    if (kernels.tiles) return kernels.tiles(m, row, prefix, first_sample, tiles);
     RowSums r;
     const int count = (row.count + kTileCols - 1) / kTileCols;
     for (int i = 0; i < count;) {
@@ -106,25 +108,17 @@ RowSums sample_row_tiles(const MapPixels& m, const RowInput& row, bool vector, c
         part.ax += k0, part.ay += k0, part.t += k0, part.count = k1 - k0;
         RowSums s;
         if (kind == Tile::kAllValid) {
-            s = sample_row_inside(m, part);
+            s = kernels.inside(m, part);
             const std::size_t p0 = first_sample + std::size_t(k0), p1 = first_sample + std::size_t(k1);
             s.n = part.count;
             s.st = prefix.st[p1] - prefix.st[p0];
             s.stt = prefix.stt[p1] - prefix.stt[p0];
         } else {
-            s = sample_row_checked(m, part);
+            s = kernels.checked(m, part);
         }
         r.n += s.n, r.sj += s.sj, r.sjj += s.sjj, r.sjt += s.sjt, r.st += s.st, r.stt += s.stt;
     }
     return r;
-}
-
-bool avx2_available() {
-#if defined(__x86_64__) || defined(__i386__)
-    return __builtin_cpu_supports("avx2");
-#else
-    return false;
-#endif
 }
 
 }  // namespace trn::cpu

@@ -9,6 +9,8 @@
 
 namespace trn::cpu {
 
+struct RowKernels;  // row_kernels.hpp: the inner loop this processor runs
+
 // The no-data by blocks of 8x8 cells, to judge a rectangle of cells with four lookups: how many of
 // its blocks are not all valid, and how many hold a valid cell. Summed-area tables (entry
 // (by, bx) of a table of (blocks_y + 1) x (blocks_x + 1): the count over the blocks above and to
@@ -86,10 +88,11 @@ struct TemplatePrefix {
 
 // A dense row (one bdv, ddv) of a patch that is not all inside, on a map without no-data: the
 // samples inside the map form one run, since px and py are monotonic along a row (each is one
-// rounded affine step of the row's du), so only that run is sampled, by the inside sampler (AVX2
-// when `vector`); the others would add nothing. T sums from `prefix` (`first`: the row's first
+// rounded affine step of the row's du), so only that run is sampled, by the inside sampler of
+// `kernels`; the others would add nothing. T sums from `prefix` (`first`: the row's first
 // sample in the plan). The same sums as sample_row_checked, n, st, stt included.
-RowSums sample_row_clipped(const MapPixels& m, const RowInput& row, bool vector, const TemplatePrefix& prefix, std::size_t first);
+RowSums sample_row_clipped(const MapPixels& m, const RowInput& row, const RowKernels& kernels, const TemplatePrefix& prefix,
+                           std::size_t first);
 
 // A dense patch on a map with no-data, in tiles of kTileRows rows x kTileCols samples, each judged
 // from the positions of its four corner samples: px and py are monotonic along a row and down a
@@ -105,19 +108,23 @@ enum class Tile : std::uint8_t {
 Tile judge_tile(const MapPixels& m, const float (&px)[4], const float (&py)[4]);
 
 // One dense row of a patch through its band's tiles (`tiles`: kinds of samples [kTileCols * i,
-// kTileCols * (i + 1)), neighbours of one kind sampled in one call). The same sums as
-// sample_row_checked, n, st, stt included.
-RowSums sample_row_tiles(const MapPixels& m, const RowInput& row, bool vector, const TemplatePrefix& prefix, std::size_t first,
-                         const Tile* tiles);
+// kTileCols * (i + 1)), neighbours of one kind sampled in one call of `kernels`, or all in its
+// one-pass tiles loop). The same sums as sample_row_checked, n, st, stt included.
+RowSums sample_row_tiles(const MapPixels& m, const RowInput& row, const RowKernels& kernels, const TemplatePrefix& prefix,
+                         std::size_t first, const Tile* tiles);
 
 // AVX2 versions of sample_row_inside and sample_row_checked (the same integers; interpolation and
 // products as int16 multiply-adds; the checked one tests each sample's position and cell bit in
-// lanes and zeroes what is left out). Only call when avx2_available(); every map the API accepts
-// (< 2^31 pixels) fits their 32-bit gather indices.
+// lanes and zeroes what is left out). x86-64 only, and only through row_kernels() (which checks
+// the processor has AVX2); every map the API accepts (< 2^31 pixels) fits their 32-bit gather indices.
 RowSums sample_row_inside_avx2(const MapPixels& m, const RowInput& row);
 RowSums sample_row_checked_avx2(const MapPixels& m, const RowInput& row);
 // sample_row_tiles with AVX2, in one pass over the row (one set of lane sums for all its tiles).
 RowSums sample_row_tiles_avx2(const MapPixels& m, const RowInput& row, const TemplatePrefix& prefix, std::size_t first, const Tile* tiles);
-bool avx2_available();
+
+// NEON versions of sample_row_inside and sample_row_checked (AArch64 only; the same integers, four
+// samples per step; dense rows and precomputed sparse positions, not RowInput's du/dv).
+RowSums sample_row_inside_neon(const MapPixels& m, const RowInput& row);
+RowSums sample_row_checked_neon(const MapPixels& m, const RowInput& row);
 
 }  // namespace trn::cpu

@@ -316,12 +316,4 @@ RowSums sample_row_tiles_avx2(const MapPixels& m, const RowInput& row, const Tem
 }
 
 }  // namespace trn::cpu
-#else
-namespace trn::cpu {
-RowSums sample_row_inside_avx2(const MapPixels& m, const RowInput& row) { return sample_row_inside(m, row); }
-RowSums sample_row_checked_avx2(const MapPixels& m, const RowInput& row) { return sample_row_checked(m, row); }
-RowSums sample_row_tiles_avx2(const MapPixels& m, const RowInput& row, const TemplatePrefix& prefix, std::size_t first, const Tile* tiles) {
-    return sample_row_tiles(m, row, false, prefix, first, tiles);
-}
-}  // namespace trn::cpu
-#endif
+#endif  // __x86_64__: elsewhere row_kernels() never names these

@@ -196,13 +196,14 @@ std::string ResultsStore::load() {
     if (!unreadable && !other_config && !repeated) return "";
     std::string note = path_ + ":";
     if (other_config) {
-        note += " " + std::to_string(other_config) + " line(s) of another configuration ignored (";
+        // Appended piece by piece: `"literal" + std::string` trips GCC 12's -Wrestrict false positive on aarch64 (GCC PR 105651).
+        note.append(" ").append(std::to_string(other_config)).append(" line(s) of another configuration ignored (");
         bool first = true;
-        for (const auto& [h, n] : other_hashes) note += (first ? "" : ", ") + h + " x" + std::to_string(n), first = false;
-        note += "; this run's is " + hash_ + ", each one's in " + folder_of(path_) + "/configs/)";
+        for (const auto& [h, n] : other_hashes) note.append(first ? "" : ", ").append(h).append(" x").append(std::to_string(n)), first = false;
+        note.append("; this run's is ").append(hash_).append(", each one's in ").append(folder_of(path_)).append("/configs/)");
     }
-    if (unreadable) note += " " + std::to_string(unreadable) + " unreadable line(s) ignored (a cut-off write; their jobs run again)";
-    if (repeated) note += " " + std::to_string(repeated) + " repeated job line(s) ignored (the first one is used)";
+    if (unreadable) note.append(" ").append(std::to_string(unreadable)).append(" unreadable line(s) ignored (a cut-off write; their jobs run again)");
+    if (repeated) note.append(" ").append(std::to_string(repeated)).append(" repeated job line(s) ignored (the first one is used)");
     return note;
 }
 

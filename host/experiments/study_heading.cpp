@@ -107,7 +107,10 @@ public:
             for (int k = 0; k < 6; ++k) {
                 const auto it = std::find(offsets.begin(), offsets.end(), kTableOffsets[k]);
                 const double v = used ? change[it - offsets.begin()] / used : NAN;
-                t.rows.push_back({(kTableOffsets[k] > 0 ? "+" : "") + std::to_string(kTableOffsets[k]), fmt(v), kPublished[k]});
+                // The sign appended, not `("+" or "") + std::string`: GCC 12's -Wrestrict false positive on aarch64 (GCC PR 105651).
+                std::string offset = kTableOffsets[k] > 0 ? "+" : "";
+                offset += std::to_string(kTableOffsets[k]);
+                t.rows.push_back({offset, fmt(v), kPublished[k]});
             }
             t.write(mc.out, "table_3_5_" + map);
             md += t.markdown() + "\n";

@@ -91,20 +91,24 @@ PhotoExif parse_photo_exif(std::string_view bytes, const std::string& name) {
     // The image keeps its ExifData: only references to it here, so no exiv2 container is
     // instantiated in this file (its weak symbols would be exported beside our API, and the device
     // kit's io layer must export exactly the same).
-    Exiv2::Image::AutoPtr image;
-    try {
-        image =
-            Exiv2::ImageFactory::open(reinterpret_cast<const Exiv2::byte*>(bytes.data()), static_cast<long>(bytes.size()));
-        if (!image.get()) throw Error(name + ": not a JPEG exiv2 can read");
-        image->readMetadata();
-        p.width = image->pixelWidth(), p.height = image->pixelHeight();
-    } catch (const Error&) {
-        throw;
-    } catch (const std::bad_alloc&) {
-        throw Error(name + ": corrupt JPEG or EXIF (exiv2 ran out of memory reading it)");
-    } catch (const std::exception& e) {  // Exiv2::AnyError, and what its parsers let escape (std::out_of_range ...)
-        throw Error(name + ": corrupt JPEG or EXIF (exiv2: " + quote_input(e.what(), 120) + ")");
-    }
+    // exiv2 0.27 hands the image over as Image::AutoPtr, a std::auto_ptr (deprecated): taken by
+    // auto, never named here, so Clang's -Wdeprecated-declarations has nothing to report.
+    auto image = [&] {
+        try {
+            auto opened =
+                Exiv2::ImageFactory::open(reinterpret_cast<const Exiv2::byte*>(bytes.data()), static_cast<long>(bytes.size()));
+            if (!opened.get()) throw Error(name + ": not a JPEG exiv2 can read");
+            opened->readMetadata();
+            return opened;
+        } catch (const Error&) {
+            throw;
+        } catch (const std::bad_alloc&) {
+            throw Error(name + ": corrupt JPEG or EXIF (exiv2 ran out of memory reading it)");
+        } catch (const std::exception& e) {  // Exiv2::AnyError, and what its parsers let escape (std::out_of_range ...)
+            throw Error(name + ": corrupt JPEG or EXIF (exiv2: " + quote_input(e.what(), 120) + ")");
+        }
+    }();
+    p.width = image->pixelWidth(), p.height = image->pixelHeight();
     if (p.width <= 0 || p.height <= 0) throw Error(name + ": corrupt JPEG (no image size in its frame header)");
     const Exiv2::ExifData& exif = image->exifData();
     try {

@@ -328,8 +328,9 @@ AirWriter::AirWriter(const std::string& folder, std::vector<std::string> extra_c
     for (const std::string& c : extra_columns_)
         if (std::find(kColumns.begin(), kColumns.end(), c) != kColumns.end() || c.empty())
             throw Error(folder + "/metadata.csv: extra column '" + c + "' is empty or one of the AIR columns");
-    for (std::size_t i = 0; i < kColumns.size(); ++i) csv_ += (i ? "," : "") + kColumns[i];
-    for (const std::string& c : extra_columns_) csv_ += "," + quote_if_needed(c);
+    // Appended piece by piece: `"," + std::string` trips GCC 12's -Wrestrict false positive on aarch64 (GCC PR 105651).
+    for (std::size_t i = 0; i < kColumns.size(); ++i) csv_.append(i ? "," : "").append(kColumns[i]);
+    for (const std::string& c : extra_columns_) csv_.append(",").append(quote_if_needed(c));
     csv_ += "\n";
 }
 
@@ -360,7 +361,8 @@ void AirWriter::write(const AirRecord& r, GrayView image, const std::vector<std:
         std::snprintf(buf, sizeof buf, kFormats[c], v);
         csv_ += buf;
     }
-    for (const std::string& e : extra) csv_ += "," + quote_if_needed(io::utf8_replaced(e));  // outside text (a photo's name, EXIF)
+    for (const std::string& e : extra)  // outside text (a photo's name, EXIF); not "," + string: GCC PR 105651
+        csv_.append(",").append(quote_if_needed(io::utf8_replaced(e)));
     csv_ += "\n";
 }
 

@@ -21,7 +21,7 @@ struct BackendOptions {
 
     struct Cpu {
         int threads = 0;    // worker threads; 0: the hardware threads
-        bool simd = true;   // false: the portable inner loop even where AVX2 is available
+        bool simd = true;   // false: the portable inner loop even where AVX2 (x86-64) or NEON (aarch64) is there
     } cpu;
 
     struct OpenCl {

@@ -1,0 +1,121 @@
+# shellcheck shell=bash disable=SC2154  # repo, cache, build, jobs, cmake_exe ... come from scripts/platform-check
+# Sourced by scripts/platform-check (which sets repo, cache, build, jobs, cmake_exe, ctest_exe, start,
+# cold and the helpers): the arm64 cross build, its tests under qemu-user, and the byte-for-byte
+# comparison of its scores and per-step estimates with the x86-64 build's.
+
+# What the conformance, unit and filter tests run (the rest of the build is not needed for them).
+arm64_targets=(trnkit_cli trn_conformance trn_unit_tests trn_filter_tests trn_demo_start_cli_tests
+               trn_localize_start_cli_tests trn_identical_flights_tests trn_odometry_option_cli_tests)
+
+# qemu-user runs aarch64 programs started by name (tests start trnkit from sh) once binfmt_misc
+# knows them: registered from Debian's qemu-user-static entry when missing.
+arm64_binfmt() {
+  local dir=/proc/sys/fs/binfmt_misc
+  [[ -e $dir/qemu-aarch64 ]] && return 0
+  [[ -e $dir/register ]] || mount -t binfmt_misc binfmt_misc "$dir" || {
+    echo "platform-check: cannot mount binfmt_misc: aarch64 programs run only through the tests' emulator line" >&2
+    return 0
+  }
+  [[ -e $dir/qemu-aarch64 ]] || grep -v '^#' /usr/lib/binfmt.d/qemu-aarch64.conf > "$dir/register"
+}
+
+# The cases both architectures score and localize, into DIR, with trnkit TRNKIT; MARCH names them.
+# FLIGHT is the simulated flight (simulated once, on x86-64, so both read the same frames).
+compare_cases() {
+  local trnkit=$1 dir=$2 flight=$3 data=$repo/../shared/data b
+  mkdir -p "$dir"
+  # 120 poses over the whole map, some over its edges; yaw in whole degrees, scales 0.9 .. 1.1.
+  awk 'BEGIN { for (i = 0; i < 120; ++i) printf "%d,%d,%.6f,%.2f\n", (i * 137) % 1800 - 20, (i * 211) % 1560 - 20, ((i * 29) % 360) * 3.14159265 / 180, 0.9 + (i % 5) * 0.05 }' > "$dir/poses.csv"
+  awk 'BEGIN { for (i = 0; i < 120; ++i) printf "%d,%d,%.6f,%.2f\n", (i * 97) % 1000 - 10, (i * 61) % 880 - 10, ((i * 31) % 360) * 3.14159265 / 180, 0.9 + (i % 5) * 0.05 }' > "$dir/poses2.csv"
+  for b in cpu-ref cpu cpu-portable opencl vulkan; do
+    local backend=$b env=()
+    [[ $b == cpu-portable ]] && backend=cpu env=(TRN_CPU_SIMD=off)
+    env "${env[@]}" "$trnkit" score --backend "$backend" --map "$data/orthophoto.png" --template "$data/realflight/frame_00000.png" \
+      --min-valid 0 --poses "$dir/poses.csv" -o "$dir/score-dense-$b.csv" 2>/dev/null || echo "FAILED" > "$dir/score-dense-$b.csv"
+    env "${env[@]}" "$trnkit" score --backend "$backend" --map "$data/orthophoto.png" --template "$data/realflight/frame_00003.png" \
+      --sampling random:0.25:7 --min-valid 0 --poses "$dir/poses.csv" -o "$dir/score-sparse-$b.csv" 2>/dev/null || echo "FAILED" > "$dir/score-sparse-$b.csv"
+    # A map with no-data (transparent): the masked samplers.
+    env "${env[@]}" "$trnkit" score --backend "$backend" --map "$data/realflight2/orthomosaic.png" \
+      --template "$data/realflight2/frames/frame_00000.png" --min-valid 0 --poses "$dir/poses2.csv" -o "$dir/score-nodata-$b.csv" 2>/dev/null ||
+      echo "FAILED" > "$dir/score-nodata-$b.csv"
+  done
+  for b in cpu-ref cpu; do
+    rm -rf "$dir/localize-$b"
+    "$trnkit" localize --dataset "$flight" --backend "$b" --seed 3 --max-particles 400 --out "$dir/localize-$b" >/dev/null 2>&1 || true
+    # Every column but the step's times (score_ms, step_ms: wall clock).
+    awk -F, -v OFS=, 'NR == 1 { for (i = 1; i <= NF; ++i) keep[i] = $i != "score_ms" && $i != "step_ms" }
+                      { line = ""; for (i = 1; i <= NF; ++i) if (keep[i]) line = line (line == "" ? "" : OFS) $i; print line }' \
+      "$dir/localize-$b/localization.csv" > "$dir/localize-$b.csv" 2>/dev/null || echo "FAILED" > "$dir/localize-$b.csv"
+  done
+}
+
+arm64_check() {
+  apt_install_checked ninja-build crossbuild-essential-arm64 qemu-user-static
+  if ! dpkg --print-foreign-architectures | grep -qx arm64; then
+    apt_wait_lock
+    echo "platform-check: adding the arm64 architecture to dpkg (package lists only; nothing arm64 is installed)"
+    dpkg --add-architecture arm64
+    apt-get update -qq
+  fi
+  arm64_binfmt
+  arm64_sysroot "$cache/arm64"
+  local root=$cache/arm64/root
+  export QEMU_LD_PREFIX=$root
+  # Under qemu-user the Vulkan loader's own search finds no ICD: lavapipe named (a path in the root).
+  export VK_DRIVER_FILES=/usr/share/vulkan/icd.d/lvp_icd.aarch64.json
+  mkdir -p "$build"
+  "$cmake_exe" -S "$repo" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_TOOLCHAIN_FILE="$repo/cmake/aarch64-linux-gnu.cmake" \
+    -DTRN_AARCH64_SYSROOT="$root" -DTRN_WITH_CUDA=OFF -DTRN_BUILD_BENCH=OFF -DCMAKE_DISABLE_FIND_PACKAGE_Python3=ON \
+    -DTRN_REQUIRE_BACKENDS="opencl;vulkan" > "$build/platform-check-configure.log" 2>&1 || { cat "$build/platform-check-configure.log" >&2; exit 1; }
+  build_checked --target "${arm64_targets[@]}"
+  # PoCL apart: under qemu-user 7.2 it aborts before its first kernel, since it looks for its kernel
+  # library with access(), which qemu-user does not redirect into the root (open and stat it does).
+  run_tests -E '^conformance[.]opencl$'
+  local pocl=passed
+  "$build/tests/conformance/trn_conformance" --backend opencl --require > "$build/platform-check-pocl.log" 2>&1 ||
+    pocl="FAILED (exit $?; $build/platform-check-pocl.log)"
+
+  # The same cases on x86-64 (build/) and on arm64, compared byte for byte.
+  local x86=$repo/build/apps/trnkit/trnkit arm=$build/apps/trnkit/trnkit out=$build/platform-compare
+  if [[ ! -x $x86 ]]; then
+    echo "platform-check: building the x86-64 reference (build/)"
+    "$cmake_exe" -S "$repo" -B "$repo/build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+    "$cmake_exe" --build "$repo/build" -j "$jobs" --target trnkit_cli >/dev/null
+  fi
+  rm -rf "$out"
+  mkdir -p "$out"
+  "$x86" simulate --scenario FR-200 --frames 40 --size-m 800 --map-year 2010 --out "$out/flight" >/dev/null 2>&1
+  compare_cases "$x86" "$out/x86_64" "$out/flight"
+  compare_cases "$arm" "$out/aarch64" "$out/flight"
+  local f same=0 differ=0 failed=0 not_run=() identical=yes
+  for f in "$out"/x86_64/*.csv; do
+    f=$(basename "$f")
+    if [[ $f == *-opencl.csv && $pocl != passed ]]; then
+      not_run+=("$f")  # PoCL does not run under qemu-user (above)
+    elif grep -qx FAILED "$out/x86_64/$f" "$out/aarch64/$f"; then
+      echo "platform-check: $f: the run FAILED on $(grep -lx FAILED "$out/x86_64/$f" "$out/aarch64/$f" | xargs -n1 dirname | xargs -n1 basename | tr '\n' ' ')"
+      failed=$((failed + 1)) identical=no
+    elif cmp -s "$out/x86_64/$f" "$out/aarch64/$f"; then
+      same=$((same + 1))
+    else
+      echo "platform-check: $f differs: $(cmp "$out/x86_64/$f" "$out/aarch64/$f" | head -1)"
+      differ=$((differ + 1)) identical=no
+    fi
+  done
+  # On arm64 itself: NEON and the portable loop score as cpu-ref does (columns ncc, cc, ssd, valid_samples, flags).
+  local kind neon_ref=yes
+  for kind in dense sparse nodata; do
+    for f in cpu cpu-portable; do
+      cmp -s "$out/aarch64/score-$kind-cpu-ref.csv" "$out/aarch64/score-$kind-$f.csv" || neon_ref=no
+    done
+  done
+  local inner
+  inner=$("$arm" devices -v 2>/dev/null | grep -o 'inner loop [A-Za-z0-9]*' | head -1 || true)
+  echo "arm64: aarch64-linux-gnu-g++ $(aarch64-linux-gnu-g++ -dumpfullversion), CMake $cmake_version, $cold build" \
+       "($compiled files compiled, $warnings warnings), under $(qemu-aarch64-static --version | head -1 | awk '{print $1, $2, $3}'):" \
+       "$tests_line, tests ok: $tests_ok; conformance on PoCL: $pocl; cpu ${inner:-inner loop ?}," \
+       "cpu = cpu-portable = cpu-ref on arm64: $neon_ref; $same of $((same + differ + failed)) output files equal to x86-64's" \
+       "($differ differ, $failed failed; not compared: ${not_run[*]:-none}); $(( $(date +%s) - start )) s;" \
+       "bit-identical to x86-64: $identical"
+  [[ $tests_ok == yes && $identical == yes ]]
+}
