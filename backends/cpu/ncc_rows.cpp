@@ -23,8 +23,10 @@ RowSums sample_row(const MapPixels& m, const RowInput& row) {
         std::int64_t valid = 1;
         if constexpr (Checked) {
             valid = on_map(px, py, xmax, ymax) ? 1 : 0;
-            px = std::clamp(px, 0.0f, xmax);  // keeps the loads in bounds; masked out below
-            py = std::clamp(py, 0.0f, ymax);
+            // Keeps the loads in bounds (the sample is masked out above). Not std::clamp: it returns
+            // a NaN position as NaN, and int(NaN) is undefined (INT_MIN on x86: a load far outside).
+            px = px >= 0.0f ? std::min(px, xmax) : 0.0f;
+            py = py >= 0.0f ? std::min(py, ymax) : 0.0f;
         }
         const int x0 = std::min(int(px), x0max), y0 = std::min(int(py), y0max);  // px >= 0: int() == floor
         if constexpr (Checked)
