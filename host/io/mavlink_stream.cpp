@@ -6,6 +6,7 @@
 #include <string>
 #include <utility>
 
+#include "trn/detail/covariance2.hpp"
 #include "trn/error.hpp"
 
 namespace trn::io::mavlink {
@@ -61,9 +62,7 @@ void check_nav_fix(const NavFix& f) {
 
 double horizontal_sigma_m(const NavFix& f) {
     if (std::isfinite(f.cov_nn) && std::isfinite(f.cov_ee)) {
-        const double ne = std::isfinite(f.cov_ne) ? f.cov_ne : 0;
-        const double half_trace = (f.cov_nn + f.cov_ee) / 2, d = (f.cov_nn - f.cov_ee) / 2;
-        return std::sqrt(half_trace + std::sqrt(d * d + ne * ne));  // the largest eigenvalue
+        return largest_sigma(f.cov_nn, std::isfinite(f.cov_ne) ? f.cov_ne : 0, f.cov_ee);
     }
     return f.spread_m;
 }

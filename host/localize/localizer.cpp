@@ -1,8 +1,8 @@
 #include "trn/localize/localizer.hpp"
 
-#include <algorithm>
 #include <cstdio>
 
+#include "trn/detail/covariance2.hpp"
 #include "trn/error.hpp"
 #include "trn/sim/camera.hpp"
 #include "trn/sim/geodesy.hpp"
@@ -67,9 +67,7 @@ void Localizer::add_uncertainty(const filter::Estimate& f, double time_s, Estima
     const double m2 = mpp_ * mpp_;
     e.cov_xx_px2 = f.cov_xx, e.cov_xy_px2 = f.cov_xy, e.cov_yy_px2 = f.cov_yy;
     e.cov_ee_m2 = f.cov_xx * m2, e.cov_nn_m2 = f.cov_yy * m2, e.cov_ne_m2 = -f.cov_xy * m2;
-    const double half_trace = (e.cov_ee_m2 + e.cov_nn_m2) / 2;
-    const double radius = std::hypot((e.cov_ee_m2 - e.cov_nn_m2) / 2, e.cov_ne_m2);
-    e.eph_m = std::sqrt(std::max(0.0, half_trace + radius));
+    e.eph_m = largest_sigma(e.cov_nn_m2, e.cov_ne_m2, e.cov_ee_m2);
     if (config_.map_origin) {
         sim::Map frame;  // resolution and origin only
         frame.metres_per_pixel = mpp_, frame.origin = config_.map_origin;
