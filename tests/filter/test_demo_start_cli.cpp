@@ -11,34 +11,18 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "../cli/cli_process.hpp"
+#include "../common/csv_rows.hpp"
 
 namespace {
 
+using trn::test::read_csv_rows;
 using trn::test::run_trnkit;
-
-// The per-step CSV as rows of named cells.
-std::vector<std::map<std::string, std::string>> read_rows(const std::string& path) {
-    std::ifstream in(path);
-    std::string line, cell;
-    std::getline(in, line);
-    std::vector<std::string> names;
-    for (std::stringstream ss(line); std::getline(ss, cell, ',');) names.push_back(cell);
-    std::vector<std::map<std::string, std::string>> rows;
-    while (std::getline(in, line)) {
-        std::map<std::string, std::string> row;
-        std::stringstream ss(line);
-        for (const std::string& name : names) std::getline(ss, row[name], ',');
-        rows.push_back(row);
-    }
-    return rows;
-}
 
 class DemoStartCli : public testing::Test {
 protected:
@@ -56,7 +40,7 @@ TEST_F(DemoStartCli, StartRadiusReachesTheFilterAndTheSummary) {
     ASSERT_EQ(r.code, 0) << r.output;
     std::ifstream in(out + "/summary.json");
     EXPECT_EQ(nlohmann::json::parse(in).at("init_radius_m"), 50.0);
-    const auto rows = read_rows(out + "/localization.csv");
+    const auto rows = read_csv_rows(out + "/localization.csv");
     ASSERT_FALSE(rows.empty());
     EXPECT_NEAR(std::stod(rows.front().at("lock_drift_bound_m")), 50 + 40, 1e-6);  // 300 + 40 without the option
 }
@@ -65,7 +49,7 @@ TEST_F(DemoStartCli, NoWrongFixWhileSettlingOnUL200WindSeed1) {
     const std::string out = (dir_ / "ul").string();
     const auto r = run_trnkit("demo --scenario UL-200-wind --seed 1 --distance-km 0.1 --backend cpu --no-plots --out " + out);
     ASSERT_EQ(r.code, 0) << r.output;
-    const auto rows = read_rows(out + "/localization.csv");
+    const auto rows = read_csv_rows(out + "/localization.csv");
     ASSERT_GE(rows.size(), 40u);
     for (const auto& row : rows)
         if (row.at("lock_state") == "fix") EXPECT_LT(std::stod(row.at("error_m")), 50) << "a fix far from the truth at frame " << row.at("frame");

@@ -18,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "../cli/cli_process.hpp"
+#include "../common/csv_rows.hpp"
 
 namespace trn::test {
 
@@ -75,26 +76,7 @@ protected:
         return nlohmann::json::parse(in);
     }
     // The per-step CSV as rows of named cells.
-    static std::vector<std::map<std::string, std::string>> csv(const std::string& path) {
-        std::ifstream in(path);
-        std::string line;
-        std::getline(in, line);
-        std::vector<std::string> names;
-        std::stringstream h(line);
-        for (std::string c; std::getline(h, c, ',');) names.push_back(c);
-        std::vector<std::map<std::string, std::string>> rows;
-        while (std::getline(in, line)) {
-            std::map<std::string, std::string> row;
-            std::size_t i = 0, start = 0;
-            for (std::size_t e; i < names.size(); ++i, start = e + 1) {
-                e = line.find(',', start);
-                row[names[i]] = line.substr(start, e == std::string::npos ? std::string::npos : e - start);
-                if (e == std::string::npos) break;
-            }
-            rows.push_back(row);
-        }
-        return rows;
-    }
+    static std::vector<std::map<std::string, std::string>> csv(const std::string& path) { return read_csv_rows(path); }
     std::string dir_;
 };
 

@@ -9,7 +9,6 @@
 // Skipped (visibly) without the shared data. Figures: docs/RESULTS.md, "Real flights".
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -23,6 +22,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "../cli/cli_process.hpp"
+#include "../common/csv_rows.hpp"
 #include "trn/error.hpp"
 #include "trn/registry.hpp"
 
@@ -95,25 +95,15 @@ TEST_F(RealFlight2, RegisteredWithTheMaskThenLocalizedOnEveryBackend) {
     // Issue 43 item 1: the lock monitor judges this map (264 x 232 m, inside its 150-600 m probe
     // ring: its near probes) and never says "ok" or "fix" far from the truth.
     {
-        std::ifstream in(out_cpu + "/localization.csv");
-        std::string header, line;
-        std::getline(in, header);
-        std::vector<std::string> names;
-        std::stringstream h(header);
-        for (std::string c; std::getline(h, c, ',');) names.push_back(c);
-        const auto column = [&](const char* name) { return std::size_t(std::find(names.begin(), names.end(), name) - names.begin()); };
-        const std::size_t state = column("lock_state"), contrast = column("lock_contrast"), error = column("error_m");
-        ASSERT_LT(std::max({state, contrast, error}), names.size()) << header;
-        std::size_t rows = 0, measured = 0;
-        while (std::getline(in, line)) {
-            std::vector<std::string> cells;
-            std::stringstream c(line);
-            for (std::string cell; std::getline(c, cell, ',');) cells.push_back(cell);
-            ASSERT_GT(cells.size(), std::max({state, contrast, error})) << line;
-            ++rows, measured += !cells[contrast].empty();
-            if (cells[state] == "ok" || cells[state] == "fix") EXPECT_LT(std::stod(cells[error]), 25.0) << line;
+        const auto rows = trn::test::read_csv_rows(out_cpu + "/localization.csv");
+        ASSERT_FALSE(rows.empty());
+        std::size_t measured = 0;
+        for (const auto& row : rows) {
+            measured += !row.at("lock_contrast").empty();
+            const std::string& state = row.at("lock_state");
+            if (state == "ok" || state == "fix") EXPECT_LT(std::stod(row.at("error_m")), 25.0) << "frame " << row.at("frame") << ": " << state;
         }
-        EXPECT_EQ(measured, rows) << "a lock contrast on every step (NaN on all 31 before the near probes)";
+        EXPECT_EQ(measured, rows.size()) << "a lock contrast on every step (NaN on all 31 before the near probes)";
     }
     const std::string want = estimates(out_cpu);
     // cpu-ref (minutes here) is the oracle of the conformance case mask_real_orthomosaic on this very map.
