@@ -68,10 +68,8 @@ void Localizer::add_uncertainty(const filter::Estimate& f, double time_s, Estima
     e.cov_xx_px2 = f.cov_xx, e.cov_xy_px2 = f.cov_xy, e.cov_yy_px2 = f.cov_yy;
     e.cov_ee_m2 = f.cov_xx * m2, e.cov_nn_m2 = f.cov_yy * m2, e.cov_ne_m2 = -f.cov_xy * m2;
     e.eph_m = largest_sigma(e.cov_nn_m2, e.cov_ne_m2, e.cov_ee_m2);
-    if (config_.map_origin) {
-        sim::Map frame;  // resolution and origin only
-        frame.metres_per_pixel = mpp_, frame.origin = config_.map_origin;
-        const sim::LatLon ll = sim::map_pixel_to_latlon(frame, e.x, e.y);
+    if (config_.map_origin) {  // map pixels are metres east / south of the origin times mpp
+        const sim::LatLon ll = sim::local_m_to_latlon(*config_.map_origin, e.x * mpp_, e.y * mpp_);
         e.latitude_deg = ll.latitude_deg, e.longitude_deg = ll.longitude_deg;
     }
     e.time_s = time_s;
