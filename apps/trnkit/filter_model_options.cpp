@@ -36,6 +36,11 @@ void add_filter_model_options(CLI::App& cmd, FilterModelArgs& a) {
     given(cmd.add_option("--motion-eps-tran", m.eps_tran_m, "Motion model: position sd per step, metres (ours; dissertation: eps_tran of eq. 2.10, 3 sd)")
               ->check(real_in(0, 1000))->capture_default_str(),
           [&m](filter::FilterConfig& c) { c.motion.eps_tran_m = m.eps_tran_m; });
+    given(cmd.add_option("--motion-eps-tran-per-s", m.eps_tran_m_per_s,
+                         "Motion model: position sd per second between frames, metres per second, added in quadrature to "
+                         "--motion-eps-tran when the frames have times (an AIR folder's TimeS column; ours only)")
+              ->check(real_in(0, 100))->capture_default_str(),
+          [&m](filter::FilterConfig& c) { c.motion.eps_tran_m_per_s = m.eps_tran_m_per_s; });
     given(cmd.add_option("--motion-eps-rot", m.eps_rot_deg, "Motion model: heading sd around the measured heading, degrees (ours; dissertation: eps_rot of eq. 2.11, 3 sd)")
               ->check(real_in(0, 180))->capture_default_str(),
           [&m](filter::FilterConfig& c) { c.motion.eps_rot_deg = m.eps_rot_deg; });

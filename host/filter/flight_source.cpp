@@ -105,7 +105,7 @@ bool AirFlightSource::next(FlightSample& s) {
         if (row % stride_) continue;
         last_filename_ = r.filename;
         s.frame_index = row;
-        s.time_s = row / fps_;
+        s.time_s = std::isfinite(r.time_s) ? r.time_s : row / fps_;  // TimeS when the folder has it
         s.has_truth = std::isfinite(r.map_x) && std::isfinite(r.map_y);
         s.truth_x = r.map_x, s.truth_y = r.map_y;
         s.truth_yaw = sim::heading_from_quaternion(r.orientation);

@@ -1,5 +1,6 @@
 #include "trn/filter/motion_model.hpp"
 
+#include <cmath>
 #include <string>
 
 #include "trn/error.hpp"
@@ -16,6 +17,7 @@ void MotionModel::validate() const {
     in_range(alpha2, 0, 1, "alpha2");
     in_range(alpha3, 0, 5, "alpha3");
     in_range(eps_tran_m, 0, 1000, "eps_tran_m");
+    in_range(eps_tran_m_per_s, 0, 100, "eps_tran_m_per_s");
     in_range(eps_rot_deg, 0, 180, "eps_rot_deg");
     in_range(yaw_sd_deg, 0, 180, "yaw_sd_deg");
     in_range(yaw_turn_sd, 0, 5, "yaw_turn_sd");
@@ -60,7 +62,8 @@ void translate(const MotionModel& model, const StepMotion& m, double mpp, const 
     const double d = m.distance_px * (1 + model.alpha1 * m.noise_gain * z[1]);
     const double offset = model.along_heading ? 0.0 : m.course_offset_rad;
     const double course = heading + offset + ((model.alpha2 * m.noise_gain) + model.alpha3 * m.turn_rad) * z[2];
-    const double pos_sd = model.eps_tran_m / mpp + m.diffusion_px;
+    // hypot(a, 0) == a exactly: without frame times the draws and sums are those of the step model.
+    const double pos_sd = std::hypot(model.eps_tran_m / mpp, m.time_sd_px) + m.diffusion_px;
     x += d * std::sin(course) + pos_sd * z[3];
     y -= d * std::cos(course) + pos_sd * z[4];
 }

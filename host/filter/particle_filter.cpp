@@ -150,6 +150,8 @@ void ParticleFilter::initialise(double x, double y, double heading_rad) {
                                                                     : config_.fixed_particles;
     scatter(x, y, heading_rad, std::isfinite(heading_rad), config_.init_radius_m, n, 0, config_.init_heading_sd_deg);
     last_east_ = last_north_ = 0;
+    last_dt_s_ = NAN;
+    lost_run_ = 0, lost_span_ = 0;
     last_heading_ = heading_rad;
     lock_.reset(x, y, config_.init_radius_m);
     initialised_ = true;
@@ -162,6 +164,10 @@ StepMotion ParticleFilter::motion_from(const FilterInput& in, bool& lost) {
     lost_run_ = lost ? lost_run_ + 1 : 0;
     steps_since_lost_ = lost ? 0 : steps_since_lost_ + 1;
     const bool ours_lost = lost && config_.update.lost_body_velocity;
+    // With frame times, a held step is the last good step's velocity over this interval (ours).
+    const bool timed = std::isfinite(in.dt_s) && in.dt_s >= 0;
+    const double span = ours_lost && timed && last_dt_s_ > 0 ? in.dt_s / last_dt_s_ : 1.0;
+    lost_span_ = lost ? lost_span_ + span : 0;
     double diffusion_m = 0;
     if (lost) {
         east = last_east_, north = last_north_;  // constant velocity while odometry is lost
@@ -170,25 +176,29 @@ StepMotion ParticleFilter::motion_from(const FilterInput& in, bool& lost) {
         const double turn = know_turn ? wrap_angle(in.heading_rad - last_heading_) : 0.0;
         if (ours_lost && (yaw_state_ || !know_turn || std::abs(turn) > kLostStraightTurnRad)) {
             // In a turn (or with no compass to tell) a held velocity flies straight on while the
-            // aircraft comes round: no step, and a disc of the last step's length per lost step.
+            // aircraft comes round: no step, and a disc of half the distance flown since it was lost.
             east = north = 0;
-            diffusion_m = 0.5 * step_m * static_cast<double>(lost_run_);
+            diffusion_m = 0.5 * step_m * lost_span_;
         } else if (ours_lost) {
             // Flying straight: the last step held in the aircraft's frame, turned with the compass.
             const double c = std::cos(turn), sn = std::sin(turn);
             east = last_east_ * c + last_north_ * sn, north = last_north_ * c - last_east_ * sn;
             last_east_ = east, last_north_ = north;
+            east *= span, north *= span;
         }
     } else {
         last_east_ = east, last_north_ = north;
+        last_dt_s_ = timed ? in.dt_s : NAN;
     }
     // Lost odometry: triple noise (the dissertation profile, and ours for one step); ours grows it
-    // with every further lost step, as a dead-reckoned position's doubt grows.
-    const double lost_gain = !lost ? 1.0 : ours_lost ? std::min(3.0 * static_cast<double>(lost_run_), 15.0) : 3.0;
+    // with every further lost step (time), as a dead-reckoned position's doubt grows.
+    const double lost_gain = !lost ? 1.0 : ours_lost ? std::min(3.0 * lost_span_, 15.0) : 3.0;
+    const double time_sd_px = timed ? config_.motion.eps_tran_m_per_s * in.dt_s / config_.metres_per_pixel : 0.0;
     if (yaw_state_) {  // the increment is in the previous frame's axes; the rotation unknown while lost
         StepMotion m = make_yaw_state_motion(east, north, lost ? NAN : in.odometry_yaw_rad, config_.metres_per_pixel);
         m.noise_gain = lost_gain;
         m.diffusion_px = diffusion_m / config_.metres_per_pixel;
+        m.time_sd_px = time_sd_px;
         return m;
     }
     const bool have_heading = std::isfinite(in.heading_rad);
@@ -198,6 +208,7 @@ StepMotion ParticleFilter::motion_from(const FilterInput& in, bool& lost) {
     if (have_heading) last_heading_ = in.heading_rad;
     m.noise_gain = lost_gain;
     m.diffusion_px = diffusion_m / config_.metres_per_pixel;
+    m.time_sd_px = time_sd_px;
     return m;
 }
 

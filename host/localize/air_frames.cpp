@@ -43,6 +43,7 @@ Observation AirFrame::observation() const {
     o.odometry_east_m = odometry_step.east_m, o.odometry_north_m = odometry_step.north_m;
     o.heading_rad = heading_rad;
     o.has_attitude = true, o.roll_rad = roll_rad, o.pitch_rad = pitch_rad;
+    o.time_s = time_s;
     return o;
 }
 
@@ -57,6 +58,7 @@ bool AirFrameReader::next(AirFrame& f) {
     f.row = row_++;
     f.filename = r.filename;
     f.altitude_agl_m = r.relative_altitude_m;
+    f.time_s = r.time_s;
     f.heading_rad = sim::heading_from_quaternion(r.imu);
     const sim::RollPitch rp = sim::roll_pitch_from_quaternion(r.imu);
     f.roll_rad = rp.roll_rad, f.pitch_rad = rp.pitch_rad;

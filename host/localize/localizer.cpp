@@ -107,6 +107,8 @@ Estimate Localizer::step(const Observation& o) {
     in.odometry_yaw_rad = o.odometry_yaw_rad;
     in.frame = o.frame.empty() ? GrayView{} : o.frame;
     in.map_px_per_camera_px = o.map_px_per_camera_px;
+    // NaN on either side, or a clock that went backwards (reset): unknown, as for the velocity.
+    if (const double dt = o.time_s - previous_.time_s; dt >= 0) in.dt_s = dt;
     GrayImage level;  // the nadir view of a tilted frame
     if (!o.frame.empty()) {
         if (!std::isfinite(o.map_px_per_camera_px)) {

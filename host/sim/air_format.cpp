@@ -104,6 +104,8 @@ constexpr double kMaxMetres = 1e7;       // Pose*, Svo*, RelativeAltitude: 10,00
 constexpr double kMaxMapPixels = 1e7;    // MapX, MapY
 constexpr double kMaxAltitudeM = 20000;  // RelativeAltitude: above any UAV
 constexpr std::size_t kMaxLineBytes = 64 << 10;  // a metadata.csv row is ~250 bytes
+constexpr const char* kTimeColumn = "TimeS";      // optional (air_format.hpp)
+constexpr double kMaxTimeS = 1e11;                // Unix seconds for 3000 years, or any flight clock
 
 std::string number_text(double v) {
     char buf[32];
@@ -391,6 +393,11 @@ AirMetadataParser::AirMetadataParser(std::istream& in, std::string source) : in_
     field_count_ = names.size();
     column_of_.assign(kColumns.size(), -1);
     for (std::size_t i = 0; i < names.size(); ++i)
+        if (names[i] == kTimeColumn) {
+            if (time_column_ >= 0) throw Error(source_ + ":" + std::to_string(line_) + ": column " + kTimeColumn + " appears twice");
+            time_column_ = static_cast<int>(i);
+        }
+    for (std::size_t i = 0; i < names.size(); ++i)
         for (std::size_t c = 0; c < kColumns.size(); ++c)
             if (names[i] == kColumns[c]) {
                 if (column_of_[c] >= 0)
@@ -439,11 +446,27 @@ bool AirMetadataParser::next(AirRecord& r) {
         for (const auto& [q, prefix] : {std::pair{&r.imu, "Imu"}, std::pair{&r.orientation, "Orientation"}})
             if (!std::isnan(q->w))  // NaN: the group is empty (not measured)
                 if (const std::string why = not_unit(*q, prefix); !why.empty()) throw Error(at + why);
+        if (time_column_ >= 0) r.time_s = parse_time(fields[time_column_], at);
         check_order(r.filename, at);
         return true;
     }
     if (in_.bad()) throw Error(source_ + ": read error");
     return false;
+}
+
+// TimeS: empty is unknown; otherwise a finite number of seconds, never below the previous row's.
+double AirMetadataParser::parse_time(const std::string& f, const std::string& at) {
+    if (trim(f).empty()) return NAN;
+    double v = 0;
+    const auto [ptr, ec] = std::from_chars(f.data(), f.data() + f.size(), v);
+    if (ec != std::errc() || ptr != f.data() + f.size() || !std::isfinite(v) || std::abs(v) > kMaxTimeS)
+        throw Error(at + kTimeColumn + " '" + io::quote_input(f, 40) + "' is not a time in seconds (a finite number within +-" +
+                    std::to_string(static_cast<long long>(kMaxTimeS)) + ", or empty: unknown)");
+    if (v < last_time_s_)
+        throw Error(at + kTimeColumn + " " + f + " is before the previous row's " + std::to_string(last_time_s_) +
+                    " s; rows must be in time order");
+    last_time_s_ = v;
+    return v;
 }
 
 // Rows are frames in time order: a file name listed twice, or a frame number that does not grow

@@ -216,6 +216,34 @@ TEST(AirFormat, DuplicatedOrShuffledRowsAreRefused) {
               std::string::npos);  // beyond 64 bits, still ordered
 }
 
+// TimeS (optional, issue 42): when each frame was taken, read where the header has it; empty is
+// unknown; it must not go backwards and must be a number.
+TEST(AirFormat, OptionalTimeColumnIsReadAndChecked) {
+    const std::string h = std::string(kHeader).substr(0, std::string(kHeader).size() - 1) + ",TimeS\n";
+    auto timed = [](const std::string& f, const std::string& t) { std::string r = row_with("MapX", "10", f); return r.substr(0, r.size() - 1) + "," + t + "\n"; };
+    std::stringstream in(h + timed("f_1.png", "0") + timed("f_2.png", "5.5") + timed("f_3.png", "") + timed("f_4.png", "45"));
+    AirMetadataParser p(in, "t.csv");
+    AirRecord r;
+    std::vector<double> times;
+    while (p.next(r)) times.push_back(r.time_s);
+    ASSERT_EQ(times.size(), 4u);
+    EXPECT_EQ(times[0], 0.0);
+    EXPECT_EQ(times[1], 5.5);
+    EXPECT_TRUE(std::isnan(times[2]));  // unknown, not zero
+    EXPECT_EQ(times[3], 45.0);
+    std::stringstream untimed(std::string(kHeader) + kRow);  // no column: NaN
+    AirMetadataParser q(untimed, "u.csv");
+    ASSERT_TRUE(q.next(r));
+    EXPECT_TRUE(std::isnan(r.time_s));
+    EXPECT_NE(error_of(h + timed("f_1.png", "10") + timed("f_2.png", "9.5")).find("m.csv:3: TimeS 9.5 is before the previous row's 10"),
+              std::string::npos);
+    EXPECT_NE(error_of(h + timed("f_1.png", "noon")).find("m.csv:2: TimeS 'noon' is not a time in seconds"), std::string::npos);
+    EXPECT_NE(error_of(h + timed("f_1.png", "inf")).find("TimeS 'inf' is not a time"), std::string::npos);
+    EXPECT_NE(error_of(h + timed("f_1.png", "1e300")).find("TimeS '1e300' is not a time"), std::string::npos);
+    EXPECT_NE(error_of(std::string(kHeader).substr(0, std::string(kHeader).size() - 1) + ",TimeS,TimeS\n").find("column TimeS appears twice"),
+              std::string::npos);
+}
+
 TEST(AirFormat, ReaderRefusesAFolderWithOnlyAHeader) {
     const std::string dir = temp_folder("header_only");
     std::filesystem::create_directories(dir);

@@ -59,6 +59,10 @@ struct MotionModel {
     double alpha2 = 0.03;      // course sd, radians (= across-track sd per metre moved)
     double alpha3 = 0.2;       // extra course sd per radian the heading turned this step (odometry in turns)
     double eps_tran_m = 1.0;   // isotropic position sd per step, metres
+    // Isotropic position sd per second between frames (metres per second: a velocity error that
+    // persists, e.g. wind the odometry does not see), added in quadrature to eps_tran_m when the
+    // frame times are known (FilterInput::dt_s). 0: noise follows the step count and the distance only.
+    double eps_tran_m_per_s = 0.0;
     double eps_rot_deg = 2.0;  // heading sd around the measured heading, degrees
     // Without a compass (yaw in the particle state):
     double yaw_sd_deg = 1.0;          // yaw sd added per step to the odometry's rotation increment, degrees
@@ -79,6 +83,7 @@ struct StepMotion {
     double heading_change_rad = 0; // the same, signed (clockwise; 0 when unknown): delta_rot of eq. 2.11
     double noise_gain = 1;         // > 1 while the odometry is lost (constant velocity)
     double diffusion_px = 0;       // extra isotropic position sd (ours, lost odometry in a turn: where it went is unknown)
+    double time_sd_px = 0;         // eps_tran_m_per_s * the time since the previous frame (ours; 0: unknown or off)
     // Without a compass: each particle turns by rotation_rad (NaN: unknown) and moves by the
     // increment as seen from its own yaw before the turn (the increment is in the previous frame's axes).
     bool yaw_state = false;

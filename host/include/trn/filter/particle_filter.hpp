@@ -179,6 +179,10 @@ struct FilterInput {
     double odometry_yaw_rad = NAN;
     GrayView frame;                                    // empty: no image this step
     double map_px_per_camera_px = 1;                   // from altitude, field of view and map resolution
+    // Seconds since the previous step's frame (NaN: unknown, the steps taken as evenly spaced).
+    // Known, it scales MotionModel::eps_tran_m_per_s and a lost odometry's held step (UpdateModel:
+    // the last good step's velocity times this interval, a gap of 40 s in a turn is not one of 5 s).
+    double dt_s = NAN;
 };
 
 struct Estimate {
@@ -250,6 +254,8 @@ private:
     LockMonitor lock_;
     double last_east_ = 0, last_north_ = 0, last_heading_ = NAN;
     std::size_t lost_run_ = 0;  // consecutive steps with lost odometry
+    double lost_span_ = 0;      // the same in units of the last good step's interval (= lost_run_ without frame times)
+    double last_dt_s_ = NAN;    // interval of the last good odometry step (NaN: unknown)
     std::size_t steps_since_lost_ = SIZE_MAX / 2;  // steps since the odometry was last lost
     bool yaw_state_ = false;  // config_.heading == HeadingMode::None
     bool initialised_ = false;

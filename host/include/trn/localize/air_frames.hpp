@@ -65,6 +65,7 @@ struct AirFrame {
     OdometryIncrements::Step odometry_step;    // since the previous row
     CompasslessOdometry::Step compassless_step;  // the same in the previous frame's axes, and the heading's change
     double truth_x = NAN, truth_y = NAN;       // MapX/MapY (NaN: none)
+    double time_s = NAN;                       // TimeS (NaN: the folder has none)
 
     // The Localizer's input for this row (the frame view refers to `image`).
     Observation observation() const;

@@ -68,7 +68,10 @@ struct Observation {
     bool has_attitude = false;                            // roll/pitch measured: a tilted frame is warped to nadir
     double roll_rad = 0, pitch_rad = 0;
     double time_s = NAN;                                  // when the frame was taken, seconds on any one clock
-                                                          // (NaN: unknown); velocity needs two steps with times
+                                                          // (NaN: unknown); velocity needs two steps with times;
+                                                          // the interval scales the motion noise and a lost
+                                                          // odometry's held step (FilterInput::dt_s); a time before
+                                                          // the previous step's counts as unknown
 };
 
 struct Estimate {

@@ -9,6 +9,10 @@
 //   OrientationX, Y, Z, W         true attitude quaternion (ENU, FLU body)
 //   MapX, MapY                    true position in map pixels (x east, y south)
 //   SvoX, SvoY, SvoZ              visual odometry position, metres, same frame as Pose
+// Optional, read when the header has it (trnkit import-photos writes it; simulate does not):
+//   TimeS                         when the frame was taken, seconds on one clock (empty: unknown);
+//                                 never decreasing down the rows. Without it a frame's time is its
+//                                 row over the folder's fps.
 // Groups of columns a flight may not have are left empty in every cell of the group (NaN in
 // AirRecord; the writer writes NaN as an empty cell): Latitude,Longitude (no position fix);
 // ImuX..W (no attitude measured: heading unknown, the camera taken as level at nadir);
@@ -21,6 +25,7 @@
 // no flight can have (latitude beyond 90, |MapX| > 1e7, a quaternion not of length 1) and rows
 // duplicated or out of frame order (by the number a file name ends with). flight.json next to it (written by
 // `trnkit simulate`) names the map, its resolution and the camera.
+#include <cmath>
 #include <cstdint>
 #include <fstream>
 #include <iosfwd>
@@ -65,6 +70,7 @@ struct AirRecord {
     Quaternion orientation;
     double map_x = 0, map_y = 0;
     Vec3 svo_m;
+    double time_s = NAN;  // the optional TimeS column (NaN: absent or empty); the writer leaves it to extra columns
 };
 
 AirRecord make_air_record(const FlightFrame& frame, const std::string& filename);
@@ -123,6 +129,7 @@ public:
 
 private:
     void check_order(const std::string& filename, const std::string& at);
+    double parse_time(const std::string& field, const std::string& at);
 
     std::istream& in_;
     std::string source_;
@@ -131,6 +138,8 @@ private:
     std::size_t field_count_ = 0;
     std::unordered_map<std::string, int> first_line_of_;  // file name -> line it was first listed on
     std::string last_number_, last_filename_;              // the last row whose name ends in a frame number
+    int time_column_ = -1;                                 // TimeS, optional (-1: absent)
+    double last_time_s_ = NAN;                             // the last row's TimeS
 };
 
 // Streams a flight folder.
