@@ -227,7 +227,7 @@ void localize(LocalizeArgs a) {
         backend = default_registry().create(a.backend, backend_options_from_environment());
     }
     localize::LocalizationSpec spec;
-    spec.flight = localize::AirFolderFlight{dataset, in.camera, in.fps, a.max_tilt_deg};
+    spec.flight = localize::AirFolderFlight{dataset, in.camera, in.fps, a.max_tilt_deg, in.has_flight_json};
     spec.odometry = a.odometry == "visual" ? localize::OdometryKind::Visual : localize::OdometryKind::Recorded;
     spec.rate_hz = a.rate_hz;
     spec.to_latlon = in.to_latlon;

@@ -2,10 +2,14 @@
 
 #include <cmath>
 #include <cstdio>
+#include <algorithm>
 #include <filesystem>
+#include <optional>
 
 #include "trn/error.hpp"
+#include "trn/io/image_header.hpp"
 #include "trn/io/input_file.hpp"
+#include "trn/limits.hpp"
 #include "trn/filter/nadir_warp.hpp"
 #include "trn/sim/render.hpp"
 
@@ -29,11 +33,31 @@ std::string number(double v) {
     return buf;
 }
 
+// A frame's size from its header; nullopt when the header cannot be read (the frame's load reports
+// that during the run, as a missing frame).
+std::optional<ImageSize> header_size(const std::string& path) {
+    try {
+        return read_image_size(path);
+    } catch (const Error&) {
+        return std::nullopt;
+    }
+}
+
 }  // namespace
 
+std::string frame_size_problem(int width, int height, int ref_width, int ref_height) {
+    if (width <= 0 || height <= 0 || ref_width <= 0 || ref_height <= 0) return "a size of 0 px";
+    const double expected = double(width) * ref_height / ref_width;  // the reference's view at this width
+    if (std::fabs(height - expected) <= std::max(1.0, 0.01 * expected)) return "";
+    return "another aspect ratio (" + number(double(width) / height) + " against " + number(double(ref_width) / ref_height) +
+           "), so not the same view at another resolution (a crop, a rotated frame or another camera) and its scale from its width "
+           "would be wrong; give such frames their own folder";
+}
+
 AirFlightSource::AirFlightSource(const std::string& folder, const sim::Camera& camera, double metres_per_pixel,
-                                 double fps, std::size_t stride, std::size_t frames_hint, MapExtent map, double max_tilt_deg)
-    : reader_(folder), camera_(camera), mpp_(metres_per_pixel), fps_(fps), max_tilt_deg_(max_tilt_deg), stride_(stride), hint_(frames_hint) {
+                                 double fps, std::size_t stride, std::size_t frames_hint, MapExtent map, double max_tilt_deg,
+                                 bool camera_size_stated)
+    : reader_(folder), camera_(camera), camera_size_stated_(camera_size_stated), mpp_(metres_per_pixel), fps_(fps), max_tilt_deg_(max_tilt_deg), stride_(stride), hint_(frames_hint) {
     if (!(fps > 0)) throw Error("AirFlightSource: fps must be > 0");
     if (!(max_tilt_deg >= 0 && max_tilt_deg < 90)) throw Error("AirFlightSource: max_tilt_deg must be in [0, 90)");
     if (stride == 0) throw Error("AirFlightSource: stride must be >= 1");
@@ -49,6 +73,9 @@ void AirFlightSource::check_rows(MapExtent map) {
     sim::AirRecord r;
     std::size_t count = 0, used = 0, missing = 0, odometry_off = 0, oblique = 0;
     std::string first_missing, first_odometry_off, first_oblique;
+    // The size every frame must be a resized view of: the stated camera's, else the first frame's.
+    int ref_w = camera_size_stated_ ? camera_.width : 0, ref_h = camera_size_stated_ ? camera_.height : 0;
+    std::string ref_what = "the folder's camera (flight.json)";
     double start_x = 0, start_y = 0, svo_e0 = 0, svo_n0 = 0;
     while (rows.next(r)) {
         const std::string at = place(rows, r.filename) + ": ";  // RelativeAltitude in (0, 20000] m: AirMetadataParser's check
@@ -68,8 +95,19 @@ void AirFlightSource::check_rows(MapExtent map) {
             ++used;
             if (tilt_deg(r) > max_tilt_deg_ && oblique++ == 0) first_oblique = place(rows, r.filename) + ", tilt " + number(tilt_deg(r)) + " deg";
             std::error_code ec;
-            if (!std::filesystem::is_regular_file(rows.image_path(r), ec))
+            const std::string image = rows.image_path(r);
+            if (!std::filesystem::is_regular_file(image, ec)) {
                 if (missing++ == 0) first_missing = place(rows, r.filename);
+            } else if (const std::optional<ImageSize> size = header_size(image);
+                       size && size->width <= limits::kMaxImageSide && size->height <= limits::kMaxImageSide) {  // the header only: no decoding
+                const int w = static_cast<int>(size->width), h = static_cast<int>(size->height);  // larger: refused by the load
+                if (ref_w == 0) {
+                    ref_w = w, ref_h = h, ref_what = "the first frame (" + image + ")";
+                } else if (const std::string why = frame_size_problem(w, h, ref_w, ref_h); !why.empty()) {
+                    throw Error(place(rows, r.filename) + ": the frame " + image + " is " + std::to_string(w) + "x" + std::to_string(h) +
+                                " px, but " + ref_what + " is " + std::to_string(ref_w) + "x" + std::to_string(ref_h) + " px: " + why);
+                }
+            }
         }
     }
     if (missing == used)

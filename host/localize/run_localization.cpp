@@ -139,7 +139,7 @@ LocalizationResult run_on_map(const LocalizationSpec& spec, GrayView map, GrayVi
         info.frames = filter::count_air_rows(folder);
         info.filter_rate_hz = fps / info.stride;
         filter::AirFlightSource source(folder, air->camera, metres_per_pixel, fps, info.stride, (info.frames + info.stride - 1) / info.stride,
-                                       {map.width, map.height}, air->max_tilt_deg);
+                                       {map.width, map.height}, air->max_tilt_deg, air->camera_size_stated);
         {
             sim::AirReader first(folder);
             sim::AirRecord r;

@@ -258,7 +258,7 @@ pyb::dict localize_flight(const std::string& dataset, const std::string& map, co
         io.dataset = dataset, io.map = map, io.metres_per_pixel = metres_per_pixel, io.hfov_deg = hfov_deg, io.fps = fps, io.nodata = nodata;
         const localize::AirInputs in = localize::resolve_air_inputs(io);
         localize::LocalizationSpec spec;
-        spec.flight = localize::AirFolderFlight{dataset, in.camera, in.fps, max_tilt_deg};
+        spec.flight = localize::AirFolderFlight{dataset, in.camera, in.fps, max_tilt_deg, in.has_flight_json};
         spec.odometry = odometry == "visual" ? localize::OdometryKind::Visual : localize::OdometryKind::Recorded;
         spec.rate_hz = rate_hz;
         spec.to_latlon = in.to_latlon;

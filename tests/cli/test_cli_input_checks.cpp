@@ -155,8 +155,8 @@ TEST_F(CliInput, LocalizeRefusesBrokenAirFoldersNamingFileAndLine) {
     });
 }
 
-// A frame of another size than flight.json's camera is scored at the scale of its own width
-// (issue 12 item 4), and a folder without flight.json runs from --map/--mpp/--hfov-deg.
+// A frame of another size than flight.json's camera, the same view resized, is scored at the scale
+// of its own width (issue 12 item 4), and a folder without flight.json runs from --map/--mpp/--hfov-deg.
 TEST_F(CliInput, LocalizeTakesFramesOfAnySizeAndFoldersWithoutFlightJson) {
     const std::string small = flight("small_frame", {row("frame_000000.png"), row("frame_000001.png")}, 32, 24);
     const auto r = run_trnkit(localize(small));
@@ -168,6 +168,42 @@ TEST_F(CliInput, LocalizeTakesFramesOfAnySizeAndFoldersWithoutFlightJson) {
     EXPECT_NE(refused.output.find("--map: required: " + bare + "/flight.json is absent"), std::string::npos) << refused.output;
     const auto ran = run_trnkit(localize(bare) + " --map " + bare + "/map.png --mpp 1 --hfov-deg 60");
     EXPECT_EQ(ran.code, 0) << ran.output;
+}
+
+// A frame that is not the camera's view at another resolution (another aspect ratio: a crop, a
+// rotated frame, another camera) is refused before the run, naming the file and both sizes, and
+// nothing is written (issue 45 class 6: localize never compared a frame's size with the folder's
+// camera and scored such a frame at a focal length its width does not give).
+TEST_F(CliInput, LocalizeRefusesAFrameOfAnotherAspectRatioBeforeWritingAnything) {
+    const std::string d = flight("cropped", {row("frame_000000.png"), row("frame_000001.png")});
+    cv::imwrite(d + "/frame_000001.png", trn::test::textured_image(64, 20, 3).mat());
+    const auto r = run_trnkit(localize(d));
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_NE(r.output.find(d + "/metadata.csv:3 (frame_000001.png): the frame " + d + "/frame_000001.png is 64x20 px, but the folder's camera "
+                                "(flight.json) is 64x48 px: another aspect ratio"),
+              std::string::npos)
+        << r.output;
+    EXPECT_FALSE(std::filesystem::exists(d + "/out")) << "validate first: no output before the refusal";
+
+    const std::string square = flight("square", {row("frame_000000.png")}, 48, 48);  // even the first frame is checked
+    const auto s = run_trnkit(localize(square));
+    EXPECT_EQ(s.code, 1) << s.output;
+    EXPECT_NE(s.output.find(square + "/metadata.csv:2 (frame_000000.png): the frame " + square + "/frame_000000.png is 48x48 px, but the "
+                                     "folder's camera (flight.json) is 64x48 px"),
+              std::string::npos)
+        << s.output;
+
+    // Without flight.json the first frame is the reference.
+    const std::string bare = flight("bare_mixed", {row("frame_000000.png"), row("frame_000001.png")});
+    std::filesystem::remove(bare + "/flight.json");
+    cv::imwrite(bare + "/frame_000001.png", trn::test::textured_image(36, 48, 3).mat());
+    const auto b = run_trnkit(localize(bare) + " --map " + bare + "/map.png --mpp 1 --hfov-deg 60");
+    EXPECT_EQ(b.code, 1) << b.output;
+    EXPECT_NE(b.output.find(bare + "/metadata.csv:3 (frame_000001.png): the frame " + bare + "/frame_000001.png is 36x48 px, but the first frame (" +
+                            bare + "/frame_000000.png) is 64x48 px"),
+              std::string::npos)
+        << b.output;
+    EXPECT_FALSE(std::filesystem::exists(bare + "/out"));
 }
 
 TEST_F(CliInput, LocalizeNamesTheRowWhenTheLibraryRefuses) {

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <memory>
 #include <optional>
 #include <sstream>
 
@@ -125,6 +126,70 @@ TEST(GeoTiffMap, RefusesRotatedAndCrsLessFilesNamingThem) {
         EXPECT_FALSE(std::filesystem::exists(temp("never")));
         std::filesystem::remove(path);
     }
+#endif
+}
+
+// A map whose extent crosses the antimeridian (issue 45 class 6): a UTM zone 60S map over Fiji
+// whose pixel column 100 lies on 180 deg. Its latitude/longitude come back wrapped into [-180, 180]
+// (PROJ normalises them), fixes 2 m apart across the antimeridian map to pixels 2 m apart (not
+// 40 075 km), and every pixel round-trips. The same extent in a geographic CRS (pixels in degrees,
+// where the wrap would fall inside the raster) is refused naming the file and what to do.
+TEST(GeoTiffMap, AMapAcrossTheAntimeridianHasWrappedLongitudesAndShortDistances) {
+    SKIP_WITHOUT_GDAL();
+#ifdef TRN_HAVE_GDAL
+    GDALAllRegister();
+    OGRSpatialReference utm, wgs84;
+    ASSERT_EQ(utm.importFromEPSG(32760), OGRERR_NONE);
+    ASSERT_EQ(wgs84.importFromEPSG(4326), OGRERR_NONE);
+    utm.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+    wgs84.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+    std::unique_ptr<OGRCoordinateTransformation> to_utm(OGRCreateCoordinateTransformation(&wgs84, &utm));
+    ASSERT_NE(to_utm, nullptr);
+    double e180 = 180.0, n180 = -17.0;  // the antimeridian at 17 S, in zone 60S metres
+    ASSERT_TRUE(to_utm->Transform(1, &e180, &n180));
+    auto write = [&](const std::string& path, const OGRSpatialReference& crs, const double (&gt)[6]) {
+        GDALDataset* ds = GetGDALDriverManager()->GetDriverByName("GTiff")->Create(path.c_str(), 200, 100, 1, GDT_Byte, nullptr);
+        ASSERT_NE(ds, nullptr);
+        ds->SetGeoTransform(const_cast<double*>(gt));
+        ds->SetSpatialRef(&crs);
+        const trn::GrayImage t = texture(200, 100);
+        ASSERT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, 200, 100, const_cast<std::uint8_t*>(t.pixels.data()), 200, 100, GDT_Byte, 0, 0),
+                  CE_None);
+        GDALClose(ds);
+    };
+    const std::string path = temp("antimeridian.tif");
+    const double gt[6] = {e180 - 100.5, 1.0, 0, n180 + 50.5, 0, -1.0};  // pixel centre (100, 50) on 180 deg, 17 S
+    write(path, utm, gt);
+    const trn::io::GeoTiff g = trn::io::read_geotiff(path);
+    const trn::io::GeoReference geo(g, path);
+    const trn::io::GeoPoint west = geo.to_latlon(99, 50), east = geo.to_latlon(101, 50), centre = geo.to_latlon(100, 50);
+    EXPECT_NEAR(centre.latitude_deg, -17.0, 1e-8);
+    EXPECT_NEAR(std::fabs(centre.longitude_deg), 180.0, 1e-8);
+    EXPECT_GT(west.longitude_deg, 179.99);
+    EXPECT_LE(west.longitude_deg, 180.0);
+    EXPECT_GE(east.longitude_deg, -180.0);
+    EXPECT_LT(east.longitude_deg, -179.99);
+    const auto pw = geo.to_pixel(west.latitude_deg, west.longitude_deg), pe = geo.to_pixel(east.latitude_deg, east.longitude_deg);
+    EXPECT_NEAR(pw[0], 99, 1e-6);
+    EXPECT_NEAR(pe[0], 101, 1e-6);
+    EXPECT_NEAR(std::hypot(pe[0] - pw[0], pe[1] - pw[1]) * g.metres_per_pixel, 2.0, 1e-5);  // 2 m, not 40 075 km
+    const auto over = geo.to_pixel(-17.0, 180.00001 - 360);  // a fix written as -179.99999 or as 180.00001 is the same place
+    const auto same = geo.to_pixel(-17.0, 180.00001);
+    EXPECT_NEAR(over[0], same[0], 1e-6);
+    EXPECT_NEAR(over[1], same[1], 1e-6);
+    std::filesystem::remove(path);
+
+    const std::string degrees = temp("antimeridian_degrees.tif");  // 179.9 .. 180.1 E in a geographic CRS
+    const double gd[6] = {179.9, 0.001, 0, -16.95, 0, -0.001};
+    write(degrees, wgs84, gd);
+    try {
+        trn::io::read_geotiff(degrees);
+        ADD_FAILURE() << degrees << " was accepted";
+    } catch (const trn::Error& e) {
+        EXPECT_EQ(std::string(e.what()).rfind(degrees + ": CRS 'WGS 84' is not a projected CRS in metres", 0), 0u) << e.what();
+        EXPECT_NE(std::string(e.what()).find("reproject it, e.g. to UTM"), std::string::npos) << e.what();
+    }
+    std::filesystem::remove(degrees);
 #endif
 }
 

@@ -1,10 +1,13 @@
 #pragma once
 // Reads a parser's key=value options, and refuses keys the parser does not know (a typo must
-// not silently become a default).
+// not silently become a default) and numbers outside their stated range (option_ranges.hpp).
+#include <cmath>
+#include <cstdio>
 #include <optional>
 #include <set>
 #include <string>
 
+#include "option_ranges.hpp"
 #include "text_input.hpp"
 #include "trn/energy/parsers.hpp"
 
@@ -32,11 +35,21 @@ public:
         if (!v) return std::nullopt;
         const auto n = text::to_number(*v);
         if (!n) throw Error(parser_ + ": option " + key + "='" + *v + "' is not a finite number");
+        const OptionRange* r = option_range(key);
+        if (!r) throw Error(parser_ + ": option " + key + " has no stated range (a defect: add it to option_ranges.hpp)");
+        if (*n < r->min || *n > r->max || (r->whole && *n != std::trunc(*n)))
+            throw Error(parser_ + ": option " + key + "=" + *v + " is outside " + (r->whole ? "the whole numbers " : "") + shown(r->min) + ".." +
+                        shown(r->max) + " " + std::string(r->unit));
         return n;
     }
     double number(const std::string& key, double fallback) const { return number(key).value_or(fallback); }
 
 private:
+    static std::string shown(double v) {
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "%g", v);
+        return buf;
+    }
     const ParseOptions& options_;
     std::string parser_;
     std::set<std::string> known_;

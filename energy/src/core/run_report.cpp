@@ -13,6 +13,7 @@
 #include "text_input.hpp"
 #include "trn/energy/label_check.hpp"
 #include "trn/io/input_file.hpp"
+#include "trn/io/outside_text.hpp"
 #include "trn/error.hpp"
 #include "trn/io/provenance.hpp"
 
@@ -47,7 +48,7 @@ Int whole_number(const json& object, const char* key, const std::string& name) {
     if (v.is_number_unsigned() && std::in_range<Int>(v.get<std::uint64_t>())) return static_cast<Int>(v.get<std::uint64_t>());
     if (v.is_number_integer() && !v.is_number_unsigned() && std::in_range<Int>(v.get<std::int64_t>())) return static_cast<Int>(v.get<std::int64_t>());
     throw Error(name + ": run report field \"" + key + "\" must be a whole number" + (std::is_signed_v<Int> ? "" : " >= 0") + " (got " +
-                v.dump().substr(0, 40) + ")");
+                io::json_line(v).substr(0, 40) + ")");
 }
 
 // No frame inside the log is never a result: say why. On one clock, a log that would hold every
@@ -190,7 +191,7 @@ std::string run_report_json(const RunReport& r) {
                           {"flag", e.flag}, {"marker_ms", f.marker_ms}, {"write_ms", f.write_ms}, {"exec_ms", f.exec_ms}, {"read_ms", f.read_ms}});
     }
     j["frames"] = frames;
-    return j.dump(1) + "\n";
+    return io::json_text(j, 1);  // outside text (log and marker paths, notes) made valid UTF-8 first
 }
 
 std::string run_report_csv(const RunReport& r) {

@@ -12,6 +12,7 @@
 #include "trn/energy/stats.hpp"
 #include "trn/error.hpp"
 #include "trn/io/gnuplot.hpp"
+#include "trn/io/outside_text.hpp"
 #include "trn/io/provenance.hpp"
 
 namespace trn::energy {
@@ -111,7 +112,7 @@ std::string bench_json(const BenchResult& res) {
                         {"bound_j", r.bound_j}, {"idle_w", r.idle_w}, {"busy_w", r.busy_w}, {"samples_per_frame", r.samples_per_frame},
                         {"markers", r.run.markers_path}, {"marker_meta", r.run.marker_meta}});
     j["rows"] = rows;
-    return j.dump(1) + "\n";
+    return io::json_text(j, 1);  // outside text (paths, labels, notes) made valid UTF-8 first
 }
 
 std::string bench_csv(const BenchResult& res) {

@@ -11,6 +11,7 @@
 #include "text_input.hpp"
 #include "trn/error.hpp"
 #include "trn/io/provenance.hpp"
+#include "trn/io/outside_text.hpp"
 #include "trn/detail/json_number.hpp"
 
 namespace trn::energy {
@@ -393,7 +394,7 @@ std::string comparison_json(const Comparison& c) {
         pairs.push_back(pair);
     }
     j["pairs"] = pairs;
-    return j.dump(1) + "\n";
+    return io::json_text(j, 1);  // outside text (input names, platforms, notes) made valid UTF-8 first
 }
 
 }  // namespace trn::energy

@@ -54,13 +54,17 @@ struct MapExtent {
 // truth off the map, every frame missing. What a run survives (a few frames missing, odometry
 // drifting off the map, frames too oblique) becomes warnings().
 // Each frame's scale comes from its own width (focal length = width/2 / tan(hfov/2)), so frames of
-// differing sizes are each scored at their own scale. Roll and pitch are read from ImuX..W: a
+// differing sizes are each scored at their own scale, as long as each is the same view at another
+// resolution: a frame whose aspect ratio differs from the camera's (`camera_size_stated`, i.e. the
+// size flight.json states) or, without one, from the first frame's (a crop, a rotated frame, another
+// camera) is refused before the run, naming the file and both sizes (frame_size_problem). Roll and pitch are read from ImuX..W: a
 // tilted frame is warped to nadir (nadir_warp.hpp); one tilted more than max_tilt_deg is not
 // loaded and comes back empty with too_oblique set.
 class AirFlightSource : public FlightSource {
 public:
     AirFlightSource(const std::string& folder, const sim::Camera& camera, double metres_per_pixel, double fps,
-                    std::size_t stride, std::size_t frames_hint = 0, MapExtent map = {}, double max_tilt_deg = 10);
+                    std::size_t stride, std::size_t frames_hint = 0, MapExtent map = {}, double max_tilt_deg = 10,
+                    bool camera_size_stated = false);
     bool next(FlightSample& sample) override;
     std::size_t frames_hint() const override { return hint_; }
     const std::vector<std::string>& warnings() const { return warnings_; }
@@ -75,6 +79,7 @@ private:
 
     sim::AirReader reader_;
     sim::Camera camera_;
+    bool camera_size_stated_ = false;
     double mpp_, fps_, max_tilt_deg_;
     std::size_t stride_, row_ = 0, hint_, loaded_ = 0, attempted_ = 0;
     std::string last_filename_, first_load_error_;
@@ -94,6 +99,13 @@ private:
     sim::FlightSimulator simulator_;
     std::size_t stride_;
 };
+
+// Why a frame of `width` x `height` px cannot be scored as a view of a camera (or first frame) of
+// `ref_width` x `ref_height` px, "" when it can: the same view at another resolution keeps the
+// aspect ratio, so its height is the reference's scaled by the width ratio within 1 px or 1 %
+// (rounding when a frame was resized). Another aspect ratio is another view, whose focal length
+// in pixels the width no longer gives.
+std::string frame_size_problem(int width, int height, int ref_width, int ref_height);
 
 // Counts the rows of an AIR folder's metadata.csv (for a progress bar).
 std::size_t count_air_rows(const std::string& folder);

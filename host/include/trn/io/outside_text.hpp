@@ -47,7 +47,7 @@ void replace_invalid_utf8(Json& j) {
 
 // The text of a JSON file trnkit writes (with a final newline): `indent` as dump() takes it, outside
 // text made valid UTF-8 first, so this never throws on it. The only call of dump() in host/, apps/,
-// capi/ and python/ (security.json_text_only).
+// capi/, python/ and energy/ (security.json_text_only).
 template <class Json>
 std::string json_text(Json j, int indent = -1) {
     replace_invalid_utf8(j);

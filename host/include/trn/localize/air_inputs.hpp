@@ -31,7 +31,7 @@ struct AirInputOptions {
 struct AirInputs {
     bool has_flight_json = false;
     std::string scenario;
-    sim::Camera camera;        // only hfov_deg matters: each frame's own width gives its scale
+    sim::Camera camera;        // hfov_deg; its size, when flight.json states it, is the one every frame must be a resized view of
     double fps = 0;            // 0: unknown (every row is a filter step)
     std::string map_path;
     sim::Map map;

@@ -97,9 +97,12 @@ using StepFn = std::function<void(const LocalizationRow&, const Estimate&)>;
 // A recorded flight: an AIR folder (metadata.csv and frames).
 struct AirFolderFlight {
     std::string folder;
-    sim::Camera camera;     // only hfov_deg matters: each frame's own width gives its scale
+    sim::Camera camera;     // hfov_deg gives each frame its scale by its own width; the size, see camera_size_stated
     double fps = 0;         // camera frame rate; 0: unknown, every row is a filter step at rate_hz
     double max_tilt_deg = filter::kDefaultMaxTiltDeg;
+    // The camera's size is the folder's (flight.json states it): every frame must be a resized view
+    // of it. False (a folder without flight.json): every frame must be one of the first frame.
+    bool camera_size_stated = false;
 };
 
 // A flight simulated over `world` (the scene the camera sees, kept alive by the caller).
