@@ -72,8 +72,10 @@ Table odometry_summary(const std::vector<Json>& outputs, const std::string& stud
 // Fig 3.9's trend lines broken at 35 s, over a study's flights, one row: how many flights store the
 // fit (results from before it have none and are left out), the median slope of the filter's and
 // the odometry's error over time before and after 35 s, in how many flights the filter's error
-// grows more slowly than the odometry's after the break, and the ratio of the median slopes after
-// it (odometry / filter; the dissertation's 11x; n/a unless both are positive).
+// grows more slowly than the odometry's after the break and in how many it still falls (still
+// converging), the ratio of the median slopes after it (odometry / filter; the dissertation's 11x;
+// n/a unless both are positive) and the median of the per-flight ratios over the flights whose
+// filter error rises after the break (a falling one has no meaningful ratio).
 Table odometry_break_summary(const std::vector<Json>& outputs, const std::string& study);
 
 }  // namespace trn::experiments
