@@ -88,6 +88,7 @@ int main(int argc, char** argv) {
         register_device_copy_benchmarks(sweep);
         register_sobel_benchmarks(sweep);
         register_ncc_benchmarks(sweep);
+        register_latency_benchmarks(sweep);
         const std::size_t ran = benchmark::RunSpecifiedBenchmarks();
         benchmark::Shutdown();
         if (ran == 0) {  // a filter that matches nothing is a mistake, not a successful run

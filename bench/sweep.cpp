@@ -58,6 +58,7 @@ Sweep make_sweep(bool full) {
         s.ncc_counts = {100};
         s.ncc_reference_count = 25;  // cpu-ref and particle_match take seconds per 100 particles at 640x480
         s.ncc_templates = {{640, 480}};
+        s.latency_steps = 60;  // of realflight3's 167: a pass of the whole flight takes 20-60 s per backend here
     }
     return s;
 }

@@ -25,6 +25,7 @@ struct Sweep {
     int ncc_filter_count = 1000;               // this many particles, every backend and the old cpu path
     int ncc_reference_count = 100;             // cpu-ref and the per-particle peers run this many
                                                // (their per-particle rate does not depend on it)
+    std::size_t latency_steps = 0;             // frame to MAVLink message: steps of the real flight per pass (0: all)
     std::size_t cold_bytes = 0;                // rotating working set for "cold" cases
     std::string cold_basis;                    // why that size, e.g. "4x the reported 508 MiB L3"
 };

@@ -10,6 +10,7 @@
 #include "trn/io/mavlink_stream.hpp"
 #include "trn/io/mavlink_udp.hpp"
 #include "trn/localize/localization.hpp"
+#include "trn/localize/mavlink_fix.hpp"
 
 namespace trn::cli {
 
@@ -33,9 +34,7 @@ private:
     io::mavlink::Stream stream_;
     io::mavlink::UdpSender sender_;
     std::string target_;
-    double mpp_;
-    bool compassless_;
-    double origin_x_ = NAN, origin_y_ = NAN;  // ODOMETRY's local frame: metres from the first estimate
+    localize::NavFixMaker fixes_;  // the estimate as a NavFix (trn/localize/mavlink_fix.hpp)
     std::size_t steps_ = 0, lost_ = 0;
 };
 

@@ -11,6 +11,8 @@
 
 namespace trn::experiments {
 
+static_assert(localize::kErrorSlopeBreakS == 35, "the store's slope names say 35s");
+
 double get(const Json& result, const char* key) {
     static const std::map<std::string, std::string> kOldNames{{"filter_error_slope_m_per_km", "filter_slope_m_per_km"},
                                                               {"odometry_error_slope_m_per_km", "odometry_slope_m_per_km"}};
@@ -19,10 +21,20 @@ double get(const Json& result, const char* key) {
     return v.is_null() ? NAN : v.get<double>();
 }
 
+std::vector<std::pair<std::string, double>> break_slopes(const localize::LocalizationSummary& s) {
+    return {{kFilterSlopeBefore, s.filter_slope_before_break_m_per_s},
+            {kFilterSlopeAfter, s.filter_slope_after_break_m_per_s},
+            {kOdometrySlopeBefore, s.odometry_slope_before_break_m_per_s},
+            {kOdometrySlopeAfter, s.odometry_slope_after_break_m_per_s}};
+}
+
 Json flight_result(const localize::LocalizationSummary& s) {
     const auto num = json_number<Json>;
     Json j;
     for (const auto& [key, value] : localize::error_numbers(s)) j[key] = num(value);
+    // Fig 3.9's trend lines, broken at 35 s of flight (LocalizationSummary): the store keeps no
+    // per-step errors, so the fit is made here, at run time.
+    for (const auto& [key, value] : break_slopes(s)) j[key] = num(value);
     j["steps"] = s.steps;
     j["distance_m"] = s.distance_m;
     j["mean_particles"] = s.mean_particles;
@@ -119,6 +131,34 @@ Table odometry_summary(const std::vector<Json>& outputs, const std::string& stud
                       fmt(quantile(filter_mean, 0.5)) + " vs " + fmt(quantile(odometry_mean, 0.5)),
                       fmt(quantile(filter_final, 0.5)) + " vs " + fmt(quantile(odometry_final, 0.5)),
                       std::to_string(within_10) + of_n});
+    return t;
+}
+
+Table odometry_break_summary(const std::vector<Json>& outputs, const std::string& study) {
+    std::vector<double> fb, fa, ob, oa, ratios;  // ratios: per flight, where the filter's error rises after the break
+    int slower = 0, fitted = 0, falling = 0;
+    for (const Json& o : outputs) {
+        const Json& r = o.at("result");
+        if (!r.contains(kFilterSlopeAfter)) continue;  // stored before the broken fit
+        ++fitted;
+        fb.push_back(get(r, kFilterSlopeBefore)), fa.push_back(get(r, kFilterSlopeAfter));
+        ob.push_back(get(r, kOdometrySlopeBefore)), oa.push_back(get(r, kOdometrySlopeAfter));
+        slower += fa.back() < oa.back();
+        falling += fa.back() <= 0;
+        if (fa.back() > 0) ratios.push_back(oa.back() / fa.back());
+    }
+    const double filter_after = quantile(fa, 0.5), odometry_after = quantile(oa, 0.5);
+    Table t;
+    t.title = "Fig 3.9's trend lines broken at 35 s of flight: least-squares slopes of the error over time before and after the break, "
+              "medians over the flights, m/s; ratio = odometry / filter after the break (diss.: 11x)";
+    t.header = {"Study", "Flights with the fit", "Filter before 35 s", "Filter after 35 s", "Odometry before 35 s", "Odometry after 35 s",
+                "Filter's error grows slower after 35 s", "Filter's error still falls after 35 s", "Ratio of the medians after 35 s (ours)",
+                "Per-flight ratio after 35 s, median (flights whose filter error rises)", "(diss.)"};
+    const std::string of_n = " of " + std::to_string(fitted);
+    t.rows.push_back({study, std::to_string(fitted) + " of " + std::to_string(outputs.size()), fmt(quantile(fb, 0.5), 3), fmt(filter_after, 3),
+                      fmt(quantile(ob, 0.5), 3), fmt(odometry_after, 3), std::to_string(slower) + of_n, std::to_string(falling) + of_n,
+                      filter_after > 0 && odometry_after > 0 ? fmt(odometry_after / filter_after) : "n/a",
+                      fmt(quantile(ratios, 0.5)) + " (" + std::to_string(ratios.size()) + ")", "11"});
     return t;
 }
 

@@ -3,6 +3,7 @@
 // for the conversion, robustness and odometry tables, and the claims computed from them.
 #include <climits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "study.hpp"
@@ -19,6 +20,14 @@ double get(const Json& result, const char* key);
 // A flight job's result numbers under the names summary.json uses (localize/report.hpp), plus
 // steps, distance, mean particles and the lock monitor's counters; a study adds its own.
 Json flight_result(const localize::LocalizationSummary& summary);
+
+// The store's names of the error slopes over time broken at 35 s (localize::kErrorSlopeBreakS; m/s),
+// and the summary's values under them. Results stored before these were added lack them.
+inline constexpr const char* kFilterSlopeBefore = "filter_error_slope_before_35s_m_per_s";
+inline constexpr const char* kFilterSlopeAfter = "filter_error_slope_after_35s_m_per_s";
+inline constexpr const char* kOdometrySlopeBefore = "odometry_error_slope_before_35s_m_per_s";
+inline constexpr const char* kOdometrySlopeAfter = "odometry_error_slope_after_35s_m_per_s";
+std::vector<std::pair<std::string, double>> break_slopes(const localize::LocalizationSummary& summary);
 
 // Which jobs a mean is taken over: "" matches any preset / conversion; map ages in [min_age, max_age]
 // (a job without map_age, e.g. odometry's, counts as age 0).
@@ -59,5 +68,14 @@ Table error_spread(const std::vector<Json>& outputs, const std::vector<std::stri
 // final and mean errors are below the odometry's, the median errors of both, and how many flights
 // end within 10 m. `study` names the row.
 Table odometry_summary(const std::vector<Json>& outputs, const std::string& study);
+
+// Fig 3.9's trend lines broken at 35 s, over a study's flights, one row: how many flights store the
+// fit (results from before it have none and are left out), the median slope of the filter's and
+// the odometry's error over time before and after 35 s, in how many flights the filter's error
+// grows more slowly than the odometry's after the break and in how many it still falls (still
+// converging), the ratio of the median slopes after it (odometry / filter; the dissertation's 11x;
+// n/a unless both are positive) and the median of the per-flight ratios over the flights whose
+// filter error rises after the break (a falling one has no meaningful ratio).
+Table odometry_break_summary(const std::vector<Json>& outputs, const std::string& study);
 
 }  // namespace trn::experiments

@@ -412,7 +412,9 @@ public:
         t.write(mc.out, "table_odometry");
         const Table summary = odometry_summary(o, name());
         summary.write(mc.out, "table_odometry_summary");
-        std::string md = summary.markdown() + "\n" + t.markdown();
+        const Table broken = odometry_break_summary(o, name());
+        broken.write(mc.out, "table_odometry_break");
+        std::string md = summary.markdown() + "\n" + broken.markdown() + "\n" + t.markdown();
         if (visual_) md += "\n" + table_3_13([&](const std::string& p, const char* key) { return mean_of(o, key, FlightCell{p, ""}); }, mc.out);
         if (mc.plots) md += "\nPer-flight plots (trajectory.png, error.png) of run 0 are in " + mc.out + "/jobs/<flight>/\n";
         return md;

@@ -22,6 +22,16 @@ FittedLine fit_line(const std::vector<double>& x, const std::vector<double>& y) 
     return {slope, my - slope * mx};
 }
 
+BrokenLine fit_broken_line(const std::vector<double>& x, const std::vector<double>& y, double break_x) {
+    if (y.size() != x.size()) return {};
+    std::vector<double> xb, yb, xa, ya;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+        if (x[i] < break_x) xb.push_back(x[i]), yb.push_back(y[i]);
+        else xa.push_back(x[i]), ya.push_back(y[i]);
+    }
+    return {fit_line(xb, yb), fit_line(xa, ya)};
+}
+
 std::map<std::string, double> with_lock_numbers(const LocalizationSummary& s, std::map<std::string, double> numbers) {
     numbers["lock_lost_events"] = static_cast<double>(s.counters.lock_lost_events);
     numbers["weak_contrast_steps"] = static_cast<double>(s.counters.weak_contrast_steps);
@@ -51,13 +61,14 @@ LocalizationSummary summarise(const std::vector<LocalizationRow>& rows, const fi
     if (rows.empty()) return s;
     // The filter sees a too-oblique frame as an empty one; missing means failed to load.
     for (const LocalizationRow& r : rows) s.counters.frames_missing -= r.too_oblique && s.counters.frames_missing > 0;
-    std::vector<double> km, fe, oe;
+    std::vector<double> km, seconds, fe, oe;
     double particles = 0, score = 0;
     for (const LocalizationRow& r : rows) {
         particles += r.particles, score += r.score_ms;
         s.frames_too_oblique += r.too_oblique;
         if (std::isfinite(r.error_m) && std::isfinite(r.odometry_error_m)) {
             km.push_back(r.distance_m / 1000), fe.push_back(r.error_m), oe.push_back(r.odometry_error_m);
+            seconds.push_back(r.time_s - rows.front().time_s);
         }
     }
     s.mean_particles = particles / rows.size();
@@ -72,6 +83,9 @@ LocalizationSummary summarise(const std::vector<LocalizationRow>& rows, const fi
         const FittedLine f = fit_line(km, fe), o = fit_line(km, oe);
         s.filter_error_slope_m_per_km = f.slope, s.filter_error_intercept_m = f.intercept;
         s.odometry_error_slope_m_per_km = o.slope, s.odometry_error_intercept_m = o.intercept;
+        const BrokenLine fb = fit_broken_line(seconds, fe, kErrorSlopeBreakS), ob = fit_broken_line(seconds, oe, kErrorSlopeBreakS);
+        s.filter_slope_before_break_m_per_s = fb.before.slope, s.filter_slope_after_break_m_per_s = fb.after.slope;
+        s.odometry_slope_before_break_m_per_s = ob.before.slope, s.odometry_slope_after_break_m_per_s = ob.after.slope;
     }
     std::size_t judged = 0, in1 = 0, in2 = 0;
     for (const LocalizationRow& r : rows)

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # scripts/bench-report on fixed bench.json files (tests/bench/data): each speed target of issue 14
 # is reported as a ratio of two rates from the same run with met / not met, and as "not measured"
-# when the run lacks one side (here: no old cpu path, no filter case); and issue 28's CUDA ratio.
+# when the run lacks one side (here: no old cpu path, no filter case); issue 28's CUDA ratio; and
+# issue 43's frame-to-MAVLink latency table.
 # usage: report_issue14_targets.sh REPO_ROOT WORK_DIR
 set -uo pipefail
 repo=$1 work=$2
@@ -32,4 +33,10 @@ report ncc_cuda_beside_peers.json
 expect ncc_cuda_beside_peers.json "NCC filter case on cuda:0 (NVIDIA H200) >= 1.0x the faster of OpenCL and Vulkan on the same device: **not met** — 360 vs vulkan:0 400 particles/s = 0.90x"
 expect ncc_cuda_beside_peers.json "random-gather limit: not measured"
 expect ncc_issue14_targets.json "No CUDA device in this run: the CUDA targets were not measured."
+# Issue 43: the frame-to-MAVLink latency table, ratios to cpu as the bench computed them, an error row kept.
+report latency_frame_to_mavlink.json
+expect latency_frame_to_mavlink.json "## Frame to MAVLink message, realflight3 (issue 43 item 5)"
+expect latency_frame_to_mavlink.json "| cpu | 50.0 | 100 | 55.0 | 120 | 0.0200 | 167 | — | — |"
+expect latency_frame_to_mavlink.json "| opencl:0 | 125 | 300 | 130 | 310 | 0.0300 | 167 | 2.50 | 3.00 |"
+expect latency_frame_to_mavlink.json "| vulkan:0 | error: fixture error ||||||||"
 exit $fail

@@ -23,6 +23,53 @@ TEST(Localization, FittedSlopeIsExactOnALine) {
     EXPECT_TRUE(std::isnan(fitted_slope({1, 1}, {2, 3})));
 }
 
+// Two lines with a kink at 35 s, sampled at 2 Hz from t = 10 s (the first step's time is the
+// flight's zero): 40 - 0.5 t before 35 s, 22.5 + 0.1 (t - 35) from it on. Each side's fit must give
+// its own slope exactly, the point at the break belonging to the second.
+TEST(Localization, BrokenLineFitsEachSideOfTheBreak) {
+    std::vector<double> t, y;
+    for (int i = 0; i <= 200; ++i) {
+        t.push_back(0.5 * i);
+        y.push_back(t.back() < 35 ? 40 - 0.5 * t.back() : 22.5 + 0.1 * (t.back() - 35));
+    }
+    const BrokenLine b = fit_broken_line(t, y, 35);
+    EXPECT_NEAR(b.before.slope, -0.5, 1e-12);
+    EXPECT_NEAR(b.before.intercept, 40, 1e-10);
+    EXPECT_NEAR(b.after.slope, 0.1, 1e-12);
+    EXPECT_NEAR(b.after.intercept, 22.5 - 3.5, 1e-10);
+    // One whole line over both sides would mix them: its slope is neither.
+    const double whole = fitted_slope(t, y);
+    EXPECT_GT(std::abs(whole - 0.1), 0.05);
+    EXPECT_GT(std::abs(whole + 0.5), 0.05);
+    // A side with fewer than two points has no line.
+    const BrokenLine none_before = fit_broken_line({35, 36, 37}, {1, 2, 3}, 35);
+    EXPECT_TRUE(std::isnan(none_before.before.slope));
+    EXPECT_NEAR(none_before.after.slope, 1, 1e-12);
+    EXPECT_TRUE(std::isnan(fit_broken_line({1, 2}, {1}, 35).after.slope));  // sizes differ
+}
+
+// The summary's broken slopes: error over seconds since the first step, broken at kErrorSlopeBreakS.
+TEST(Localization, SummaryBreaksTheErrorLinesAt35Seconds) {
+    std::vector<LocalizationRow> rows;
+    for (int i = 0; i <= 160; ++i) {  // 80 s at 2 Hz, the clock starting at 100 s
+        LocalizationRow r;
+        const double t = 0.5 * i;
+        r.time_s = 100 + t;
+        r.distance_m = 10 * t;
+        r.error_m = t < kErrorSlopeBreakS ? 50 - t : 15 + 0.02 * (t - kErrorSlopeBreakS);
+        r.odometry_error_m = t < kErrorSlopeBreakS ? 0.2 * t : 7 + 0.3 * (t - kErrorSlopeBreakS);
+        rows.push_back(r);
+    }
+    const LocalizationSummary s = summarise(rows, {}, 1.0);
+    EXPECT_NEAR(s.filter_slope_before_break_m_per_s, -1, 1e-9);
+    EXPECT_NEAR(s.filter_slope_after_break_m_per_s, 0.02, 1e-9);
+    EXPECT_NEAR(s.odometry_slope_before_break_m_per_s, 0.2, 1e-9);
+    EXPECT_NEAR(s.odometry_slope_after_break_m_per_s, 0.3, 1e-9);
+    // A flight shorter than the break has no second line.
+    rows.resize(60);
+    EXPECT_TRUE(std::isnan(summarise(rows, {}, 1.0).filter_slope_after_break_m_per_s));
+}
+
 std::vector<LocalizationRow> synthetic_rows() {
     std::vector<LocalizationRow> rows(5);
     for (std::size_t i = 0; i < rows.size(); ++i) {

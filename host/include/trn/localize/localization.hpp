@@ -49,6 +49,12 @@ struct LocalizationSummary {
     double filter_final_error_m = NAN, odometry_final_error_m = NAN;
     double filter_error_slope_m_per_km = NAN, odometry_error_slope_m_per_km = NAN;
     double filter_error_intercept_m = NAN, odometry_error_intercept_m = NAN;  // of the same lines, at 0 km
+    // The same errors over time (seconds from the first step), as two lines broken at
+    // kErrorSlopeBreakS (the dissertation's Fig 3.9 breaks its trend lines at 35 s of flight):
+    // least-squares slopes in m/s of the steps before the break and of those from it on
+    // (fit_broken_line; NaN where a side has fewer than two steps with errors).
+    double filter_slope_before_break_m_per_s = NAN, filter_slope_after_break_m_per_s = NAN;
+    double odometry_slope_before_break_m_per_s = NAN, odometry_slope_after_break_m_per_s = NAN;
     double distance_m = 0;
     double mean_particles = 0;
     double frames_per_second = 0;   // filter steps per second of wall time (sampling + scoring + estimate)
@@ -152,6 +158,16 @@ struct FittedLine {
 };
 FittedLine fit_line(const std::vector<double>& x, const std::vector<double>& y);
 inline double fitted_slope(const std::vector<double>& x, const std::vector<double>& y) { return fit_line(x, y).slope; }
+// Two least-squares lines of y over x: one through the points with x < break_x, one through those
+// with x >= break_x, each fitted on its own (not joined at the break); a side with fewer than two
+// distinct x has NaN.
+struct BrokenLine {
+    FittedLine before, after;
+};
+BrokenLine fit_broken_line(const std::vector<double>& x, const std::vector<double>& y, double break_x);
+// Where the summary's error lines over time break (LocalizationSummary::*_break_m_per_s): 35 s of
+// flight, the break point of the dissertation's Fig 3.9.
+inline constexpr double kErrorSlopeBreakS = 35;
 // The lock monitor's counters: added to a command's extra summary-JSON numbers, and as one line
 // for the console.
 std::map<std::string, double> with_lock_numbers(const LocalizationSummary& summary, std::map<std::string, double> numbers);
