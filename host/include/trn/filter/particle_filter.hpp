@@ -217,6 +217,12 @@ public:
 
     // Particles uniform within init_radius_m of (x, y) map pixels, headings around `heading_rad`.
     void initialise(double x, double y, double heading_rad);
+    // Re-initialises an initialised filter around a new position (a GNSS fix): the initial set
+    // uniform within radius_m of (x, y), headings around heading_rad; NaN: without a compass the
+    // yaw the filter has learnt (as a collapse re-initialisation keeps it), with one each particle's
+    // next compass step. The configuration, the counters and the odometry's last step are kept; the
+    // lock monitor starts over (its verdict "unknown" until a fix). Throws trn::Error naming radius_m.
+    void reanchor(double x, double y, double radius_m, double heading_rad);
     StepReport step(const FilterInput& input);
 
     const std::vector<Particle>& particles() const { return particles_; }
