@@ -30,8 +30,8 @@ def version():
 
 
 class CMakeBuild(build_ext):
-    """Configures a CMake tree for this interpreter with TRN_PYTHON_WHEEL=ON, builds the target
-    trnkit_python (and so only the libraries it links), installs the `python` component to a
+    """Configures a CMake tree for this interpreter with TRN_PYTHON_WHEEL=ON, builds the targets
+    trnkit_python and trnkit_cli (and so only the libraries they link), installs the `python` component to a
     staging folder, checks the backends it has, and copies the compiled files into the package."""
 
     def run(self):
@@ -48,7 +48,7 @@ class CMakeBuild(build_ext):
             configure += ["-G", "Ninja"]
         configure += os.environ.get("TRNKIT_CMAKE_ARGS", "").split()
         self.spawn(configure)
-        self.spawn(["cmake", "--build", str(tree), "--target", "trnkit_python"])
+        self.spawn(["cmake", "--build", str(tree), "--target", "trnkit_python", "trnkit_cli"])
         shutil.rmtree(stage, ignore_errors=True)
         self.spawn(["cmake", "--install", str(tree), "--component", "python", "--prefix", str(stage)])
         self.check_backends(stage)
@@ -63,6 +63,10 @@ class CMakeBuild(build_ext):
             if f.name.endswith(".so") or ".so." in f.name:
                 shutil.copyfile(f, target.parent / f.name)
                 print(f"trnkit: {target.parent / f.name}")
+        # The CLI, which the `trnkit` console script runs (python/trnkit/_cli.py): executable kept.
+        (target.parent / "bin").mkdir(exist_ok=True)
+        shutil.copy2(stage / "trnkit" / "bin" / "trnkit", target.parent / "bin" / "trnkit")
+        print(f"trnkit: {target.parent / 'bin' / 'trnkit'}")
 
     def check_backends(self, stage):
         """A wheel without the backends asked for is refused, not built quietly without them."""

@@ -27,6 +27,8 @@
 #include "trn/localize/air_inputs.hpp"
 #include "trn/localize/gps_track.hpp"
 #include "trn/localize/localization.hpp"
+#include "trn/localize/localizer_defaults.hpp"
+#include "trn/localize/localizer_settings.hpp"
 #include "trn/localize/report_folder.hpp"
 #include "trn/sim/air_format.hpp"
 #include "trn/sim/map.hpp"
@@ -37,20 +39,24 @@ namespace {
 
 struct LocalizeArgs {
     localize::AirInputOptions inputs;  // dataset, map, resolution, camera, fps
-    std::string backend = "fastest", conversion = "logistic:0.2", sampling = "kld", out;
+    // Every default from the library's one home (trn/localize/localizer_defaults.hpp), which the C
+    // API and Python take too.
+    std::string backend = localize::kDefaultBackend, conversion = filter::FilterConfig{}.conversion.to_string(),
+                sampling = filter::to_string(filter::FilterConfig{}.sampling), out;
     std::string odometry;  // folder (SvoX/SvoY columns) | visual (from the frames)
-    std::uint64_t seed = 1;
-    double rate_hz = 5, sparse = 1;
-    double max_tilt_deg = filter::kDefaultMaxTiltDeg;
+    std::uint64_t seed = filter::FilterConfig{}.seed;
+    double rate_hz = localize::kDefaultRateHz, sparse = 1;
+    double max_tilt_deg = localize::LocalizerConfig{}.max_tilt_deg;
     // Defaults: the profile's (ours: 1000, 100, 2000; dissertation: 500, 100, its safety cap);
     // an option given replaces it.
-    std::size_t particles = 1000, min_particles = 100, max_particles = 2000;
+    std::size_t particles = filter::FilterConfig{}.fixed_particles, min_particles = filter::FilterConfig{}.min_particles,
+                max_particles = filter::FilterConfig{}.max_particles;
     const CLI::Option *particles_given = nullptr, *min_given = nullptr, *max_given = nullptr, *init_radius_given = nullptr;
-    int template_width = 160;
-    // Start prior. 50 m, not the dissertation's 300 m: localize hands over from a GNSS fix that was
-    // good until it was lost, so the start is known to metres; 300 m mostly costs mean error.
-    // --profile dissertation takes the text's 300 m unless --init-radius-m is given.
-    double init_radius_m = localize::kHandoverInitRadiusM, reinit_radius_m = 300, heading_sd_deg = NAN, start_heading_deg = NAN;
+    int template_width = localize::LocalizerConfig{}.scoring.template_width;
+    // Start prior: kHandoverInitRadiusM (a GNSS-loss handover); --profile dissertation takes the
+    // text's 300 m unless --init-radius-m is given.
+    double init_radius_m = localize::kHandoverInitRadiusM, reinit_radius_m = filter::FilterConfig{}.reinit_radius_m, heading_sd_deg = NAN,
+           start_heading_deg = NAN;
     std::string start, start_latlon;  // "X,Y" map px / "LAT,LON" degrees, checked at parse time
     double start_from_gps_m = 0;      // > 0: start at the first row's GPS fix within this radius (replaces --init-radius-m)
     bool no_plots = false, force = false;
@@ -62,12 +68,8 @@ struct LocalizeArgs {
     bool odometry_given = false, heading_given = false;
     std::string photo_options_given;  // the first import option given (they need --photos)
     MavlinkArgs mavlink;              // --mavlink: estimates streamed out as they come
+    bool print_config = false;        // --print-config: the settings as JSON, then stop
 };
-
-// With a uniform yaw prior the initial set must cover every yaw over the start disc: on the real
-// flights 2000 particles missed the 2x-of-the-compass target on 2 seeds of 5, 6000 met it on all
-// (docs/RESULTS.md, "Compass-less localization").
-constexpr std::size_t kCompasslessUniformMaxParticles = 6000;
 
 // "A,B" as two finite reals, or nothing.
 std::optional<std::pair<double, double>> parse_pair(const std::string& text) {
@@ -137,6 +139,24 @@ void import_photos_into_dataset(LocalizeArgs& a) {
     a.inputs.map.clear(), a.inputs.metres_per_pixel = 0;  // flight.json names them now
 }
 
+// The settings every option sets over the profile's preset (what --print-config prints): all but
+// the map's resolution and the start, which come with the dataset.
+localize::LocalizerConfig settings_of(const LocalizeArgs& a, localize::LocalizerConfig lc, bool dissertation) {
+    lc.scoring.template_width = a.template_width;
+    if (a.sparse < 1) lc.scoring.sampling = Sampling::random(a.sparse, a.seed);
+    filter::FilterConfig& cfg = lc.filter;
+    cfg.sampling = filter::parse_sampling_method(a.sampling);
+    cfg.conversion = filter::Conversion::parse(a.conversion);
+    cfg.seed = a.seed;
+    cfg.reinit_radius_m = a.reinit_radius_m;
+    if (!std::isnan(a.heading_sd_deg) || !dissertation) cfg.init_heading_sd_deg = a.heading_sd_deg;
+    apply_filter_model_options(a.model, cfg);
+    lc.max_tilt_deg = a.max_tilt_deg;
+    lc.start_heading_rad = a.start_heading_deg * kDeg;
+    apply_heading_options(a.heading, lc, !std::isnan(a.start_heading_deg) ? "--start-heading-deg" : !std::isnan(a.heading_sd_deg) ? "--heading-sd-deg" : "");
+    return lc;
+}
+
 void localize(LocalizeArgs a) {
     if (a.photos.empty() && !a.photo_options_given.empty()) throw Error(a.photo_options_given + ": only with --photos (or import-photos)");
     std::vector<std::string> starts;
@@ -146,19 +166,34 @@ void localize(LocalizeArgs a) {
         throw Error(starts[0] + (starts.size() == 3 ? ", " + starts[1] + " and " + starts[2] : " and " + starts[1]) + ": give one of them, not " +
                     (starts.size() == 3 ? "all three" : "both"));
     check_filter_model_options(a.model);
-    // The profile first, then every option that was given on top of it.
-    filter::FilterConfig profile = filter::profile_config(filter::parse_profile(a.model.profile));
+    // The profile's preset first (the library's defaults: localizer_defaults.hpp), then every option
+    // that was given on top of it.
+    localize::LocalizerConfig preset = localize::localizer_profile(filter::parse_profile(a.model.profile));
+    filter::FilterConfig& profile = preset.filter;
     const bool dissertation = a.model.profile == "dissertation";
     if (a.particles_given->count() || !dissertation) profile.fixed_particles = a.particles;
     if (a.min_given->count() || !dissertation) profile.min_particles = a.min_particles;
     if (a.max_given->count() || !dissertation) profile.max_particles = a.max_particles;
+    if (a.max_given->count()) preset.compassless_max_particles = 0;  // the count given is the count
     if (a.init_radius_given->count() || !dissertation) profile.init_radius_m = a.init_radius_m;
     if (!a.photos.empty()) apply_photo_defaults(a, profile.init_radius_m);
-    if (a.heading.heading == "none" && std::isnan(a.heading.start_yaw_deg) && !a.max_given->count() && !dissertation)
-        profile.max_particles = std::max(profile.max_particles, kCompasslessUniformMaxParticles);
-    if (profile.min_particles > profile.max_particles)
-        throw Error("--min-particles " + std::to_string(profile.min_particles) + " exceeds --max-particles " + std::to_string(profile.max_particles) +
-                    (dissertation ? " (--profile dissertation)" : ""));
+    {
+        // The most particles as the run will have them (the library's compass-less rule applied).
+        localize::LocalizerConfig run = preset;
+        if (a.heading.heading == "none") run.filter.heading = filter::HeadingMode::None, run.start_heading_rad = a.heading.start_yaw_deg * kDeg;
+        const std::size_t max_particles = localize::resolved_config(run).filter.max_particles;
+        if (profile.min_particles > max_particles)
+            throw Error("--min-particles " + std::to_string(profile.min_particles) + " exceeds --max-particles " + std::to_string(max_particles) +
+                        (dissertation ? " (--profile dissertation)" : ""));
+    }
+    const localize::LocalizerConfig settings = settings_of(a, preset, dissertation);
+    if (a.print_config) {
+        std::cout << localize::settings_json(settings, {{"backend", a.backend}, {"profile", a.model.profile}, {"odometry", a.odometry}},
+                                             {{"rate_hz", a.rate_hz}})
+                  << "\n";
+        return;
+    }
+    if (a.inputs.dataset.empty()) throw CLI::RequiredError("--dataset");
     if (!a.photos.empty()) {
         // What the run will refuse, before the import replaces --dataset: the map (its header, within
         // the limits) and a --start on it.
@@ -232,21 +267,12 @@ void localize(LocalizeArgs a) {
     spec.rate_hz = a.rate_hz;
     spec.to_latlon = in.to_latlon;
     localize::LocalizerConfig& lc = spec.localizer;
-    lc.scoring.template_width = a.template_width;
-    if (a.sparse < 1) lc.scoring.sampling = Sampling::random(a.sparse, a.seed);
+    lc = settings;
     filter::FilterConfig& cfg = lc.filter;
-    cfg = profile;
     cfg.metres_per_pixel = mpp;
-    cfg.sampling = filter::parse_sampling_method(a.sampling);
-    cfg.conversion = filter::Conversion::parse(a.conversion);
-    cfg.seed = a.seed;
     if (a.start_from_gps_m > 0) cfg.init_radius_m = a.start_from_gps_m;
-    cfg.reinit_radius_m = a.reinit_radius_m;
-    if (!std::isnan(a.heading_sd_deg) || !dissertation) cfg.init_heading_sd_deg = a.heading_sd_deg;
-    apply_filter_model_options(a.model, cfg);
     lc.start_x = start_x, lc.start_y = start_y;
-    lc.start_heading_rad = a.start_heading_deg * kDeg;
-    apply_heading_options(a.heading, lc, !std::isnan(a.start_heading_deg) ? "--start-heading-deg" : !std::isnan(a.heading_sd_deg) ? "--heading-sd-deg" : "");
+    lc = localize::resolved_config(lc);  // as the Localizer will run it (and the report says)
     const bool compassless = cfg.heading == filter::HeadingMode::None;
 
     localize::RunHooks hooks;
@@ -312,8 +338,11 @@ void add_localize_command(CLI::App& app) {
     auto a = std::make_shared<LocalizeArgs>();
     auto* cmd = app.add_subcommand("localize", "Localize an AIR flight folder on its map with the DPC-PFL particle filter");
     cmd->add_option("--dataset", a->inputs.dataset,
-                    "AIR flight folder (metadata.csv, frames; flight.json optional); with --photos: the AIR folder the photos are imported into")
-        ->required();
+                    "AIR flight folder (metadata.csv, frames; flight.json optional); with --photos: the AIR folder the photos are imported into "
+                    "(required but with --print-config)");
+    cmd->add_flag("--print-config", a->print_config,
+                  "Print the settings (the profile's defaults and every option given) as one line of JSON under the names of "
+                  "docs/EMBEDDING.md's defaults table, then exit without reading anything");
     cmd->add_option("--photos", a->photos,
                     "Folder of geotagged camera photos (JPEG + EXIF): imported into --dataset first (as import-photos does; needs --map and "
                     "--altitude-agl), then localized with visual odometry and no compass");
@@ -327,7 +356,7 @@ void add_localize_command(CLI::App& app) {
         ->transform(whole_in(0, 255));
     cmd->add_option("--mpp", a->inputs.metres_per_pixel, "Map resolution, metres per pixel (default: flight.json or the GeoTIFF)")->check(real_in(0, 1000, Open::low));
     cmd->add_option("--hfov-deg", a->inputs.hfov_deg, "Camera horizontal field of view, degrees (default: flight.json)")
-        ->check(real_in(1, 170, Open::both));
+        ->check(real_in(localize::kMinCameraHfovDeg, localize::kMaxCameraHfovDeg));  // the Localizer's range
     cmd->add_option("--focal-px", a->inputs.focal_px, "Camera focal length in pixels of frames --focal-width px wide (instead of --hfov-deg)")
         ->check(real_in(0, 1e6, Open::low));
     cmd->add_option("--focal-width", a->inputs.focal_width, "Frame width (px) that --focal-px refers to")->transform(whole_in(2, 16384));

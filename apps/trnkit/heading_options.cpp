@@ -36,13 +36,13 @@ void apply_heading_options(const HeadingArgs& a, localize::LocalizerConfig& conf
         throw Error(compass_option_given + ": not with --heading none (the yaw prior is --start-yaw-deg / --start-yaw-sd-deg)");
     config.filter.heading = filter::HeadingMode::None;
     config.start_heading_rad = a.start_yaw_deg * kDeg;  // NaN: uniform
-    config.filter.init_heading_sd_deg = std::isnan(a.start_yaw_deg) ? NAN : std::isnan(a.start_yaw_sd_deg) ? kDefaultStartYawSdDeg : a.start_yaw_sd_deg;
+    config.filter.init_heading_sd_deg = std::isnan(a.start_yaw_deg) ? NAN : std::isnan(a.start_yaw_sd_deg) ? localize::kCompasslessYawSdDeg : a.start_yaw_sd_deg;
 }
 
 std::string describe_yaw_prior(const HeadingArgs& a) {
     if (std::isnan(a.start_yaw_deg)) return "uniform";
     char buf[64];
-    std::snprintf(buf, sizeof buf, "%g +- %g deg", a.start_yaw_deg, std::isnan(a.start_yaw_sd_deg) ? kDefaultStartYawSdDeg : a.start_yaw_sd_deg);
+    std::snprintf(buf, sizeof buf, "%g +- %g deg", a.start_yaw_deg, std::isnan(a.start_yaw_sd_deg) ? localize::kCompasslessYawSdDeg : a.start_yaw_sd_deg);
     return buf;
 }
 

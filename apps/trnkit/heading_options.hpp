@@ -8,16 +8,15 @@
 #include <CLI/CLI.hpp>
 
 #include "trn/localize/localizer.hpp"
+#include "trn/localize/localizer_defaults.hpp"
 
 namespace trn::cli {
 
 struct HeadingArgs {
     std::string heading = "compass";
-    double start_yaw_deg = NAN, start_yaw_sd_deg = NAN;  // NaN: uniform / kDefaultStartYawSdDeg
+    double start_yaw_deg = NAN, start_yaw_sd_deg = NAN;  // NaN: uniform / localize::kCompasslessYawSdDeg
 };
 
-// Spread of the yaw prior when --start-yaw-deg comes without --start-yaw-sd-deg.
-inline constexpr double kDefaultStartYawSdDeg = 10.0;
 
 void add_heading_options(CLI::App& cmd, HeadingArgs& args);
 // Throws trn::Error naming the option: the yaw prior without --heading none, or a compass-mode

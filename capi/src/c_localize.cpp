@@ -8,6 +8,7 @@
 #include "trn/io/image_io.hpp"
 #include "trn/localize/air_frames.hpp"
 #include "trn/localize/localizer.hpp"
+#include "trn/localize/localizer_defaults.hpp"
 #include "trn/trnkit.h"
 #include "c_handles.hpp"
 
@@ -65,6 +66,7 @@ trn::localize::LocalizerConfig to_config(const trn_localizer_config& c) {
     if (std::isnan(c.map_origin_lat_deg) != std::isnan(c.map_origin_lon_deg))
         throw InvalidArgument("config->map_origin_lat_deg and map_origin_lon_deg go together (both NaN: no georeference)");
     if (!std::isnan(c.map_origin_lat_deg)) l.map_origin = trn::sim::GeoOrigin{c.map_origin_lat_deg, c.map_origin_lon_deg};
+    l.compassless_max_particles = c.compassless_max_particles, l.compassless_yaw_sd_deg = c.compassless_yaw_sd_deg;
     return l;
 }
 
@@ -113,6 +115,7 @@ trn_localizer_config config_of(trn::filter::Profile profile) {
     c.profile = trn::filter::to_string(profile);  // a static string
     c.lock_monitor = l.filter.lock.enabled ? 1 : 0;
     c.map_origin_lat_deg = c.map_origin_lon_deg = NAN;
+    c.compassless_max_particles = l.compassless_max_particles, c.compassless_yaw_sd_deg = l.compassless_yaw_sd_deg;
     return c;
 }
 
@@ -198,6 +201,17 @@ trn_status trn_localizer_step(trn_localizer* localizer, const trn_observation* o
         c.latitude_deg = e.latitude_deg, c.longitude_deg = e.longitude_deg, c.time_s = e.time_s;
         c.vel_north_mps = e.vel_north_mps, c.vel_east_mps = e.vel_east_mps, c.vel_var_m2ps2 = e.vel_var_m2ps2;
         *out = c;
+    });
+}
+
+trn_status trn_localizer_reanchor(trn_localizer* localizer, double x, double y, double radius_m, double heading_rad) {
+    return guarded(__func__, [&] {
+        require_pointer(localizer, "localizer");
+        try {
+            localizer->impl->reanchor(x, y, radius_m, heading_rad);
+        } catch (const trn::Error& e) {
+            throw InvalidArgument(e.what());
+        }
     });
 }
 

@@ -158,6 +158,23 @@ void ParticleFilter::initialise(double x, double y, double heading_rad) {
     update_estimate();
 }
 
+void ParticleFilter::reanchor(double x, double y, double radius_m, double heading_rad) {
+    if (!std::isfinite(x) || !std::isfinite(y)) throw Error("re-anchor: the position must be finite map pixels");
+    if (!(radius_m > 0) || !std::isfinite(radius_m))
+        throw Error("re-anchor: radius_m must be > 0 metres (how far the true position may be from the fix), got " + std::to_string(radius_m));
+    const std::size_t n = config_.initial_particles > 0                  ? config_.initial_particles
+                          : config_.sampling == SamplingMethod::Kld ? config_.max_particles
+                                                                    : config_.fixed_particles;
+    if (yaw_state_ && std::isnan(heading_rad) && initialised_)
+        scatter_yaw_state(x, y, estimate_.yaw, estimate_.yaw_sd, radius_m, n, 0);
+    else
+        scatter(x, y, heading_rad, std::isfinite(heading_rad), radius_m, n, 0, config_.init_heading_sd_deg);
+    if (std::isfinite(heading_rad)) last_heading_ = heading_rad;
+    lock_.reset(x, y, radius_m);
+    initialised_ = true;
+    update_estimate();
+}
+
 StepMotion ParticleFilter::motion_from(const FilterInput& in, bool& lost) {
     double east = in.odometry_east_m, north = in.odometry_north_m;
     lost = !std::isfinite(east) || !std::isfinite(north);

@@ -16,14 +16,18 @@
 
 #include "py_arrays.hpp"
 #include "py_backend.hpp"
+#include "trn/error.hpp"
 #include "trn/field_error.hpp"
 #include "trn/io/image_io.hpp"
+#include "trn/io/map_pixels.hpp"
 #include "trn/localize/air_frames.hpp"
 #include "trn/localize/air_inputs.hpp"
 #include "trn/localize/localization.hpp"
 #include "trn/localize/localizer.hpp"
+#include "trn/localize/localizer_defaults.hpp"
 #include "trn/localize/report.hpp"
 #include "trn/localize/report_folder.hpp"
+#include "trn/localize/localizer_settings.hpp"
 
 namespace trn::py {
 namespace {
@@ -48,6 +52,9 @@ auto naming_keywords(Body&& body) {
     }
 }
 
+// trnkit.Error (docs/EMBEDDING.md) of a call on a closed Localizer.
+constexpr const char* kClosed = "Localizer: closed (or its backend was closed); make a new one";
+
 // Uses its backend under the backend's mutex; the backend's close() releases it (its map on the device).
 struct PyLocalizer : BackendUser {
     std::shared_ptr<PyBackend> backend;        // declared first: released after the localizer
@@ -62,7 +69,8 @@ localize::LocalizerConfig make_config(std::optional<std::pair<double, double>> s
                                       std::optional<std::size_t> particles, std::optional<double> init_radius_m,
                                       std::optional<double> reinit_radius_m, const std::string& heading, std::optional<double> start_heading_sd_deg,
                                       const std::string& profile, std::optional<bool> lock_monitor,
-                                      std::optional<std::pair<double, double>> map_origin) {
+                                      std::optional<std::pair<double, double>> map_origin,
+                                      std::optional<std::size_t> compassless_max_particles = std::nullopt) {
     // The profile first (ours or dissertation: docs/PROFILES.md); a keyword given (not None) over it.
     localize::LocalizerConfig c;
     try {
@@ -77,6 +85,9 @@ localize::LocalizerConfig make_config(std::optional<std::pair<double, double>> s
         throw pyb::value_error(std::string("heading: ") + e.what());
     }
     if (start_heading_sd_deg) c.filter.init_heading_sd_deg = *start_heading_sd_deg;
+    // Without a compass the prior's spread not given: the library's (compassless_yaw_sd_deg), under
+    // either profile, as `trnkit localize --heading none --start-yaw-deg` takes it.
+    else if (c.filter.heading == filter::HeadingMode::None) c.filter.init_heading_sd_deg = NAN;
     if (start) c.start_x = start->first, c.start_y = start->second;
     if (start_heading_rad) c.start_heading_rad = *start_heading_rad;
     if (camera_hfov_deg) c.camera_hfov_deg = *camera_hfov_deg;
@@ -97,7 +108,8 @@ localize::LocalizerConfig make_config(std::optional<std::pair<double, double>> s
         throw pyb::value_error(std::string("sampling: ") + e.what());
     }
     if (min_particles) c.filter.min_particles = *min_particles;
-    if (max_particles) c.filter.max_particles = *max_particles;
+    if (max_particles) c.filter.max_particles = *max_particles, c.compassless_max_particles = 0;  // the count given is the count
+    if (compassless_max_particles) c.compassless_max_particles = *compassless_max_particles;
     if (particles) c.filter.fixed_particles = *particles;
     if (init_radius_m) c.filter.init_radius_m = *init_radius_m;
     if (reinit_radius_m) c.filter.reinit_radius_m = *reinit_radius_m;
@@ -149,7 +161,7 @@ pyb::dict step(PyLocalizer& l, const pyb::object& frame, std::optional<std::pair
     {
         pyb::gil_scoped_release release;
         std::lock_guard<std::mutex> lock(l.backend->mutex);
-        if (!l.impl) throw pyb::value_error("Localizer: closed (or its backend was closed)");
+        if (!l.impl) throw Error(kClosed);
         e = l.impl->step(o);
     }
     return estimate_dict(e);
@@ -248,10 +260,8 @@ pyb::dict localize_flight(const std::string& dataset, const std::string& map, co
                           std::optional<std::size_t> min_particles, std::optional<std::size_t> max_particles,
                           std::optional<std::size_t> particles, std::optional<double> init_radius_m, std::optional<double> reinit_radius_m,
                           const std::string& out, bool plots, const std::string& heading, std::optional<double> start_heading_sd_deg, int nodata,
-                          const std::string& profile, std::optional<bool> lock_monitor) {
-    // `trnkit localize`'s start prior: 50 m under ours (a last fix good to metres), the text's 300 m
-    // under the dissertation profile (its own value).
-    if (!init_radius_m && profile == "ours") init_radius_m = localize::kHandoverInitRadiusM;
+                          const std::string& profile, std::optional<bool> lock_monitor,
+                          std::optional<std::size_t> compassless_max_particles) {
     if (odometry != "recorded" && odometry != "visual") throw pyb::value_error("odometry: 'recorded' (the folder's SvoX/SvoY) or 'visual', got '" + odometry + "'");
     return naming_keywords([&] {
         localize::AirInputOptions io;
@@ -264,7 +274,7 @@ pyb::dict localize_flight(const std::string& dataset, const std::string& map, co
         spec.to_latlon = in.to_latlon;
         spec.localizer = make_config(start, start_heading_rad, std::nullopt, max_tilt_deg, template_width, sparse, seed, conversion, sampling,
                                      min_particles, max_particles, particles, init_radius_m, reinit_radius_m, heading, start_heading_sd_deg, profile,
-                                     lock_monitor, std::nullopt);
+                                     lock_monitor, std::nullopt, compassless_max_particles);
         if (!backend) throw pyb::type_error("backend: a trnkit.Backend");
         localize::LocalizationResult r;
         {
@@ -309,12 +319,13 @@ Same inputs, same seed: the same estimates as `trnkit localize`, bit for bit.)")
                           std::optional<std::size_t> min_particles, std::optional<std::size_t> max_particles,
                           std::optional<std::size_t> particles, std::optional<double> init_radius_m, std::optional<double> reinit_radius_m,
                           const std::string& heading, std::optional<double> start_heading_sd_deg, const std::string& profile,
-                          std::optional<bool> lock_monitor, std::optional<std::pair<double, double>> map_origin) {
+                          std::optional<bool> lock_monitor, std::optional<std::pair<double, double>> map_origin,
+                          std::optional<std::size_t> compassless_max_particles) {
                  auto l = std::make_shared<PyLocalizer>();
                  const localize::LocalizerConfig c =
                      make_config(start, start_heading_rad, camera_hfov_deg, max_tilt_deg, template_width, sparse, seed, conversion, sampling,
                                  min_particles, max_particles, particles, init_radius_m, reinit_radius_m, heading, start_heading_sd_deg, profile,
-                                 lock_monitor, map_origin);
+                                 lock_monitor, map_origin, compassless_max_particles);
                  const BorrowedGray view = gray_view(map, "map");
                  const std::optional<BorrowedGray> mask =
                      valid.is_none() ? std::nullopt : std::optional<BorrowedGray>(gray_view(valid, "valid"));
@@ -336,7 +347,7 @@ Same inputs, same seed: the same estimates as `trnkit localize`, bit for bit.)")
              "conversion"_a = "logistic:0.2", "sampling"_a = "kld", "min_particles"_a = pyb::none(), "max_particles"_a = pyb::none(),
              "particles"_a = pyb::none(), "init_radius_m"_a = pyb::none(), "reinit_radius_m"_a = pyb::none(), "heading"_a = "compass",
              "start_heading_sd_deg"_a = pyb::none(), "profile"_a = "ours", "lock_monitor"_a = pyb::none(),
-             "map_origin"_a = pyb::none(),
+             "map_origin"_a = pyb::none(), "compassless_max_particles"_a = pyb::none(),
              R"(map: 2-D uint8 array; metres_per_pixel: its resolution; backend: a trnkit.Backend (python/trnkit/_localize.py
 also takes a spec string and then owns the backend).
 start: (x, y) map pixels, the last known position. start_heading_rad: centre of the initial headings
@@ -361,6 +372,16 @@ score_ms, step_ms, yaw_sd (circular sd of the yaws, radians), the covariance cov
 cov_yy_px2 (map) and cov_nn_m2, cov_ne_m2, cov_ee_m2 (north/east), eph_m, latitude_deg, longitude_deg,
 time_s, vel_north_mps, vel_east_mps, vel_var_m2ps2 (None when unknown).)")
         .def(
+            "reanchor",
+            [](PyLocalizer& l, std::pair<double, double> position, double radius_m, std::optional<double> heading_rad) {
+                pyb::gil_scoped_release release;
+                std::lock_guard<std::mutex> lock(l.backend->mutex);
+                if (!l.impl) throw Error(kClosed);
+                l.impl->reanchor(position.first, position.second, radius_m, heading_rad ? *heading_rad : NAN);
+            },
+            "position"_a, pyb::kw_only(), "radius_m"_a, "heading_rad"_a = pyb::none(),
+            "Re-anchors the filter on position (x, y) map pixels within radius_m metres (trn::localize::Localizer::reanchor).")
+        .def(
             "close",
             [](PyLocalizer& l) {
                 pyb::gil_scoped_release release;
@@ -370,9 +391,40 @@ time_s, vel_north_mps, vel_east_mps, vel_var_m2ps2 (None when unknown).)")
             "Releases the map on the device now (the backend stays open).");
 
     m.def(
+        "_localizer_settings",
+        [](std::optional<double> start_heading_rad, std::optional<double> camera_hfov_deg, double max_tilt_deg, int template_width,
+           double sparse, std::uint64_t seed, const std::string& conversion, const std::string& sampling,
+           std::optional<std::size_t> min_particles, std::optional<std::size_t> max_particles, std::optional<std::size_t> particles,
+           std::optional<double> init_radius_m, std::optional<double> reinit_radius_m, const std::string& heading,
+           std::optional<double> start_heading_sd_deg, const std::string& profile, std::optional<bool> lock_monitor,
+           std::optional<std::size_t> compassless_max_particles) {
+            return localize::settings_json(make_config(std::nullopt, start_heading_rad, camera_hfov_deg, max_tilt_deg, template_width, sparse,
+                                                       seed, conversion, sampling, min_particles, max_particles, particles, init_radius_m,
+                                                       reinit_radius_m, heading, start_heading_sd_deg, profile, lock_monitor, std::nullopt,
+                                                       compassless_max_particles));
+        },
+        pyb::kw_only(), "start_heading_rad"_a = pyb::none(), "camera_hfov_deg"_a = pyb::none(), "max_tilt_deg"_a = localize::LocalizerConfig{}.max_tilt_deg,
+        "template_width"_a = localize::LocalizerConfig{}.scoring.template_width, "sparse"_a = 1.0, "seed"_a = filter::FilterConfig{}.seed,
+        "conversion"_a = filter::FilterConfig{}.conversion.to_string(), "sampling"_a = filter::to_string(filter::FilterConfig{}.sampling),
+        "min_particles"_a = pyb::none(), "max_particles"_a = pyb::none(), "particles"_a = pyb::none(), "init_radius_m"_a = pyb::none(),
+        "reinit_radius_m"_a = pyb::none(), "heading"_a = "compass", "start_heading_sd_deg"_a = pyb::none(), "profile"_a = "ours",
+        "lock_monitor"_a = pyb::none(), "compassless_max_particles"_a = pyb::none(),
+        "The LocalizerConfig these keywords make (as trnkit.Localizer makes it) as JSON under docs/EMBEDDING.md's names; with no "
+        "keyword: the library's defaults (trn/localize/localizer_defaults.hpp).");
+    m.attr("DEFAULT_BACKEND") = localize::kDefaultBackend;
+    m.attr("DEFAULT_RATE_HZ") = localize::kDefaultRateHz;
+
+    m.def(
         "_load_gray",
         [](const std::string& path) { return gray_array(load_gray(path).view()); },
         "path"_a, "An image file (PNG, JPEG, TIFF ...) as a 2-D uint8 array, grey.");
+    m.def(
+        "_load_map",
+        [](const std::string& path, std::optional<int> nodata) {
+            io::MapPixels p = io::load_map_pixels(path, nodata);
+            return pyb::make_tuple(gray_array(p.image.view()), p.valid.width == 0 ? pyb::object(pyb::none()) : pyb::object(gray_array(p.valid.view())));
+        },
+        "path"_a, "nodata"_a, "A map image as `trnkit localize` reads it: (grey 2-D uint8 array, its no-data or None).");
     m.def(
         "_load_validity",
         [](const std::string& path, std::optional<int> nodata) -> pyb::object {
@@ -394,7 +446,8 @@ altitude_agl_m, attitude).)");
           "conversion"_a = "logistic:0.2", "sampling"_a = "kld", "min_particles"_a = pyb::none(), "max_particles"_a = pyb::none(),
           "particles"_a = pyb::none(), "init_radius_m"_a = pyb::none(), "reinit_radius_m"_a = pyb::none(), "out"_a = "", "plots"_a = false,
           "heading"_a = "compass", "start_heading_sd_deg"_a = pyb::none(), "nodata"_a = -1, "profile"_a = "ours", "lock_monitor"_a = pyb::none(),
-          R"(Localizes a whole AIR folder, as `trnkit localize` does (same defaults: a 50 m start prior).
+          "compassless_max_particles"_a = pyb::none(),
+          R"(Localizes a whole AIR folder, as `trnkit localize` does (the same defaults: trn/localize/localizer_defaults.hpp).
 map: the map image (default: the one flight.json names); metres_per_pixel, hfov_deg, fps: when
 flight.json does not say (0: not given); start: (x, y) map pixels (None: the first row's truth);
 odometry: 'recorded' or 'visual'; out: a folder for localization.csv and summary.json ('' none).

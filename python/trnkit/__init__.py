@@ -23,14 +23,14 @@ from ._trnkit import (FLAT_PATCH, FLAT_TEMPLATE, SCORE_DTYPE, TOO_FEW_SAMPLES, B
                       Sampling, __version__, git_commit)
 from ._backend import Backend, PhaseTimes, YawUnitWarning, devices, families, plan
 from ._energy import MeasurementWindows, PowerSampler, PowerTrace, integrate_energy, power_sources
-from ._localize import Localizer, load_gray, load_validity, localize, read_air_folder
+from ._localize import Localizer, load_gray, load_map, load_validity, localize, localizer_defaults, read_air_folder
 from ._mavlink import MavlinkEncoder
 
 __all__ = [
     "Backend", "BackendUnavailable", "Error", "FLAT_PATCH", "FLAT_TEMPLATE", "Localizer", "Map", "MavlinkEncoder", "MeasurementWindows",
     "PhaseTimes",
     "Plan", "PowerSampler", "PowerTrace", "SCORE_DTYPE", "Sampling", "TOO_FEW_SAMPLES", "YawUnitWarning", "devices",
-    "families", "git_commit", "integrate_energy", "load_gray", "load_validity", "localize", "plan", "power_sources", "read_air_folder",
+    "families", "git_commit", "integrate_energy", "load_gray", "load_map", "load_validity", "localize", "localizer_defaults", "plan", "power_sources", "read_air_folder",
 ]
 
 # Every public class says it is trnkit's (repr, help, pickle), not trnkit._trnkit's or trnkit._backend's.

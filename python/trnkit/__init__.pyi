@@ -192,7 +192,7 @@ class Estimate(TypedDict):  # what Localizer.step returns (a dict at run time; t
     vel_var_m2ps2: float | None
 
 class Localizer(AbstractContextManager["Localizer"]):
-    def __init__(self, map: npt.NDArray[np.uint8], metres_per_pixel: float, backend: Backend | str = "cpu", *,
+    def __init__(self, map: npt.NDArray[np.uint8], metres_per_pixel: float, backend: Backend | str = "fastest", *,
                  valid: npt.NDArray[np.uint8] | None = None, start: tuple[float, float],
                  start_heading_rad: float | None = None, camera_hfov_deg: float | None = None, max_tilt_deg: float = 10.0,
                  template_width: int = 160, sparse: float = 1.0, seed: int = 1, conversion: str = "logistic:0.2",
@@ -200,17 +200,22 @@ class Localizer(AbstractContextManager["Localizer"]):
                  max_particles: int | None = None, particles: int | None = None, init_radius_m: float | None = None,
                  reinit_radius_m: float | None = None, heading: Literal["compass", "none"] = "compass",
                  start_heading_sd_deg: float | None = None, profile: Literal["ours", "dissertation"] = "ours",
-                 lock_monitor: bool | None = None, map_origin: tuple[float, float] | None = None) -> None: ...
+                 lock_monitor: bool | None = None, map_origin: tuple[float, float] | None = None,
+                 compassless_max_particles: int | None = None) -> None: ...
     def step(self, frame: npt.NDArray[np.uint8] | None = None, *, odometry: tuple[float, float] | None = None,
              heading_rad: float | None = None, altitude_agl_m: float | None = None, scale: float | None = None,
              attitude: tuple[float, float] | None = None, odometry_yaw_rad: float | None = None,
              time_s: float | None = None) -> Estimate: ...
+    def reanchor(self, position: tuple[float, float], *, radius_m: float, heading_rad: float | None = None) -> None: ...
     def close(self) -> None: ...
 
+def load_map(path: str | os.PathLike[str], nodata: int | None = None) -> tuple[npt.NDArray[np.uint8], npt.NDArray[np.uint8] | None]: ...
 def load_gray(path: str | os.PathLike[str]) -> npt.NDArray[np.uint8]: ...
 def load_validity(path: str | os.PathLike[str], nodata: int | None = None) -> npt.NDArray[np.uint8] | None: ...
 def read_air_folder(folder: str | os.PathLike[str]) -> list[dict[str, Any]]: ...
-def localize(*, dataset: str, map: str = "", backend: Backend | str = "cpu", metres_per_pixel: float = 0.0, hfov_deg: float = 0.0,
+def localizer_defaults(profile: Literal["ours", "dissertation"] = "ours",
+                       heading: Literal["compass", "none"] = "compass") -> dict[str, Any]: ...
+def localize(*, dataset: str, map: str = "", backend: Backend | str = "fastest", metres_per_pixel: float = 0.0, hfov_deg: float = 0.0,
              fps: float = 0.0, rate_hz: float = 5.0, start: tuple[float, float] | None = None, start_heading_rad: float | None = None,
              odometry: Literal["recorded", "visual"] = "recorded", max_tilt_deg: float = 10.0, template_width: int = 160,
              sparse: float = 1.0, seed: int = 1, conversion: str = "logistic:0.2", sampling: str = "kld",
@@ -218,7 +223,8 @@ def localize(*, dataset: str, map: str = "", backend: Backend | str = "cpu", met
              init_radius_m: float | None = None, reinit_radius_m: float | None = None,
              out: str = "", plots: bool = False, heading: Literal["compass", "none"] = "compass",
              start_heading_sd_deg: float | None = None, nodata: int | None = None,
-             profile: Literal["ours", "dissertation"] = "ours", lock_monitor: bool | None = None) -> dict[str, Any]: ...
+             profile: Literal["ours", "dissertation"] = "ours", lock_monitor: bool | None = None,
+             compassless_max_particles: int | None = None) -> dict[str, Any]: ...
 
 class MavlinkEncoder:
     def __init__(self, *, system_id: int = 1, component_id: int = 197,

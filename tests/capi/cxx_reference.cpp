@@ -7,6 +7,7 @@
 
 #include "trn/energy/run_report.hpp"
 #include "trn/localize/localizer.hpp"
+#include "trn/localize/localizer_defaults.hpp"
 #include "trn/registry.hpp"
 
 namespace {

@@ -477,6 +477,8 @@ static void test_localizer(void) {
     o.frame = map_pixels, o.width = T_W, o.height = T_H, o.stride = MAP_STRIDE;
     CHECK_FAILS(trn_localizer_step(loc, &o, &e), TRN_ERR_FAILED, "camera_hfov_deg"); /* neither scale nor camera */
     o.map_px_per_camera_px = 1;
+    CHECK_FAILS(trn_localizer_step(loc, &o, &e), TRN_ERR_FAILED, "start_heading_rad"); /* compass mode, no heading ever */
+    o.heading_rad = 0;
     CHECK_OK(trn_localizer_step(loc, &o, &e));
     CHECK(!e.frame_missing && e.particles > 0 && e.step_ms >= e.score_ms, "scored step: missing %d particles %zu", e.frame_missing, e.particles);
     CHECK_FAILS(trn_localizer_step(loc, NULL, &e), TRN_ERR_INVALID_ARGUMENT, "observation is NULL");
@@ -496,6 +498,24 @@ static void test_localizer(void) {
         CHECK_OK(trn_localizer_step(loc, &t, &e2));
         CHECK(e2.time_s == 7 && fabs(e2.vel_east_mps - (e2.x - e.x) * 0.5 / 2) < 1e-12 && e2.vel_var_m2ps2 > 0,
               "velocity %g from x %g -> %g over 2 s", e2.vel_east_mps, e.x, e2.x);
+    }
+    /* Issue 43 item 4: a re-anchor on a new fix starts the filter over there (the config kept), the
+     * lock unknown again until a fix; off the map and a radius that is none are refused. */
+    {
+        trn_observation t = trn_observation_default();
+        const double fx = T_W / 2.0, fy = T_H / 2.0; /* the centre of the frame below: the map's top-left corner */
+        CHECK_OK(trn_localizer_reanchor(loc, fx, fy, 5, 0));
+        t.odometry_east_m = t.odometry_north_m = 0, t.heading_rad = 0;
+        t.frame = map_pixels, t.width = T_W, t.height = T_H, t.stride = MAP_STRIDE, t.map_px_per_camera_px = 1;
+        CHECK_OK(trn_localizer_step(loc, &t, &e));
+        /* no fix vouches for the new place: "unknown", or "weak" on this periodic map (tests/filter and
+         * tests/python check "unknown" on textured maps) */
+        CHECK(hypot(e.x - fx, e.y - fy) < 5 / 0.5 && (strcmp(e.lock_state, "unknown") == 0 || strcmp(e.lock_state, "weak") == 0) &&
+                  isnan(e.vel_east_mps),
+              "re-anchored: (%g, %g) for (%g, %g), lock %s", e.x, e.y, fx, fy, e.lock_state);
+        CHECK_FAILS(trn_localizer_reanchor(loc, -1000, fy, 5, NAN), TRN_ERR_INVALID_ARGUMENT, "px map");
+        CHECK_FAILS(trn_localizer_reanchor(loc, fx, fy, 0, NAN), TRN_ERR_INVALID_ARGUMENT, "radius_m");
+        CHECK_FAILS(trn_localizer_reanchor(NULL, fx, fy, 5, NAN), TRN_ERR_INVALID_ARGUMENT, "localizer is NULL");
     }
     trn_localizer_destroy(loc);
     loc = NULL;

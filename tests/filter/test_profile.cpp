@@ -12,6 +12,7 @@
 #include "trn/filter/motion_model.hpp"
 #include "trn/filter/particle_filter.hpp"
 #include "trn/localize/localizer.hpp"
+#include "trn/localize/localizer_defaults.hpp"
 
 namespace trn::filter {
 namespace {

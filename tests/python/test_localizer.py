@@ -179,3 +179,71 @@ def test_estimates_carry_covariance_latlon_time_and_velocity_as_typed():
     assert plain["latitude_deg"] is None and plain["time_s"] is None
     with pytest.raises(trnkit.Error, match="map_origin"):
         trnkit.Localizer(ortho, 0.5, "cpu", start=(200, 200), map_origin=(95.0, 0.0))
+
+
+def textured(size=400, seed=3):
+    rng = np.random.default_rng(seed)
+    small = (rng.random((size // 8, size // 8)) * 255).astype(np.uint8)
+    return np.kron(small, np.ones((8, 8), np.uint8))  # blobs an 8-px patch can be told apart by
+
+
+def test_reanchor_starts_over_at_the_fix_with_the_settings_kept():
+    """Issue 43 item 4: a new GNSS fix re-anchors the filter there, lock state unknown again."""
+    ortho = textured()
+    with trnkit.Localizer(ortho, 0.5, "cpu", start=(100, 100), start_heading_rad=0.0) as loc:
+        for _ in range(2):
+            loc.step(ortho[60:140, 50:150].copy(), odometry=(0.0, 0.0), heading_rad=0.0, scale=1.0)
+        loc.reanchor((300, 250), radius_m=5)
+        e = loc.step(ortho[210:290, 250:350].copy(), odometry=(0.0, 0.0), heading_rad=0.0, scale=1.0)
+        assert np.hypot(e["x"] - 300, e["y"] - 250) * 0.5 < 5
+        assert e["lock_state"] == "unknown" and e["vel_east_mps"] is None
+        with pytest.raises(trnkit.Error, match=r"400x400 px map"):
+            loc.reanchor((5000, 250), radius_m=5)
+        with pytest.raises(trnkit.Error, match="radius_m"):
+            loc.reanchor((300, 250), radius_m=0)
+    with pytest.raises(trnkit.Error, match="closed"):  # docs/EMBEDDING.md: a closed Localizer raises trnkit.Error
+        loc.reanchor((300, 250), radius_m=5)
+    with pytest.raises(trnkit.Error, match="closed"):
+        loc.step(None)
+
+
+def test_the_traps_of_issue_43_are_refused_in_user_terms():
+    import copy
+    ortho = textured()
+    frame = ortho[60:140, 50:150].copy()
+    with pytest.raises(trnkit.Error, match=r"outside the 400x400 px map"):
+        trnkit.Localizer(ortho, 0.5, "cpu", start=(5000, 100))
+    with pytest.raises(trnkit.Error, match=r"camera_hfov_deg.*\[5, 170\].*radians\?"):
+        trnkit.Localizer(ortho, 0.5, "cpu", start=(100, 100), camera_hfov_deg=1.2)
+    with pytest.raises(TypeError) as wrong:
+        trnkit.Localizer(ortho, "half", "cpu", start=(100, 100))
+    assert "_trnkit" not in str(wrong.value) and "trnkit.Localizer" in str(wrong.value)
+    with trnkit.Localizer(ortho, 0.5, "cpu", start=(100, 100), camera_hfov_deg=60) as loc:
+        for clone in (copy.copy, copy.deepcopy):
+            with pytest.raises(TypeError, match="cannot be copied"):
+                clone(loc)
+        with pytest.raises(trnkit.Error, match="ambiguous"):
+            loc.step(frame, odometry=(0.0, 0.0), heading_rad=0.0, scale=1.0, altitude_agl_m=100.0)
+        with pytest.raises(trnkit.Error, match="radians"):
+            loc.step(frame, odometry=(0.0, 0.0), heading_rad=0.0, scale=1.0, attitude=(3.0, 15.0))
+        with pytest.raises(trnkit.Error, match="start_heading_rad"):  # compass mode, no heading ever
+            loc.step(frame, odometry=(0.0, 0.0), scale=1.0)
+        with pytest.raises(trnkit.Error, match="altitude_agl_m") as low:
+            loc.step(frame, odometry=(0.0, 0.0), heading_rad=0.0, altitude_agl_m=-2.0)
+        assert "template_scale" not in str(low.value)
+        with pytest.raises(trnkit.Error, match='heading "none"'):  # odometry in the frame's axes to a compass Localizer
+            loc.step(None, odometry=(0.0, 1.0), odometry_yaw_rad=0.1)
+    with trnkit.Localizer(ortho, 0.5, "cpu", start=(100, 100), heading="none", start_heading_rad=0.0) as loc:
+        with pytest.raises(trnkit.Error, match="previous frame's axes"):  # compass-style input to a compass-less one
+            loc.step(None, odometry=(1.0, 0.0), heading_rad=0.3)
+
+
+def test_load_map_keeps_the_no_data_as_the_cli_reads_it():
+    data = os.environ.get("TRN_SHARED_DATA", "")
+    path = os.path.join(data, "realflight2", "orthomosaic.png")
+    if not data or not os.path.exists(path):
+        pytest.skip("TRN_SHARED_DATA/realflight2 not found: no map with alpha")
+    image, valid = trnkit.load_map(path)
+    np.testing.assert_array_equal(image, trnkit.load_gray(path))
+    np.testing.assert_array_equal(valid, trnkit.load_validity(path))
+    assert valid is not None and 0.3 < (valid == 0).mean() < 0.6  # the README: 46 % no-data

@@ -60,8 +60,20 @@ def test_pip_install_from_the_checkout():
     out, _ = run([py, *PIP, "show", "-f", "trnkit"])
     assert "Location: " + os.path.join(WORK, "venv-install") in out.stdout, out.stdout
     check(py)
+    check_command(py)
     run([py, *PIP, "uninstall", "-y", "trnkit"])
     assert not glob.glob(os.path.join(WORK, "venv-install", "lib", "python3*", "site-packages", "trnkit"))
+
+
+def check_command(py):
+    """pip put the `trnkit` command in the venv's bin/ (issue 43): the CLI, with its libraries from
+    the package, whatever the current folder."""
+    command = os.path.join(os.path.dirname(py), "trnkit")
+    assert os.access(command, os.X_OK), command
+    out, _ = run([command, "--version"], cwd="/")
+    assert out.stdout.startswith("trnkit "), out.stdout
+    out, _ = run([command, "localize", "--print-config"], cwd="/")
+    assert '"init_radius_m":50' in out.stdout.replace(" ", ""), out.stdout
 
 
 def built_wheel():
@@ -86,6 +98,7 @@ def test_pip_wheel_is_self_contained(wheel):
         assert want in names, (want, names)
     assert any(n.startswith("trnkit/_trnkit.cpython-") for n in names), names
     assert any(n.startswith("trnkit/libtrnkit_core.so.") for n in names), names
+    assert "trnkit/bin/trnkit" in names and "trnkit/_cli.py" in names, names
     meta = [n for n in names if n.endswith(".dist-info/METADATA")]
     text = zipfile.ZipFile(wheel).read(meta[0]).decode()
     assert "Requires-Dist: numpy" in text
@@ -96,6 +109,7 @@ def test_the_wheel_in_a_fresh_debian_venv(wheel):
     _, took = run([py, *PIP, "install", "--no-index", wheel])
     print(f"pip install trnkit.whl took {took:.1f} s")
     check(py)
+    check_command(py)
 
 
 def test_the_wheel_in_another_cpython_311(wheel, tmp_path):

@@ -213,7 +213,7 @@ typedef struct trn_localizer trn_localizer;
 typedef struct trn_localizer_config {
     double start_x, start_y;     /* map pixels: the last known position (required) */
     double start_heading_rad;    /* centre of the initial headings; NaN: the first step's heading */
-    double camera_hfov_deg;      /* horizontal field of view; needed when steps give altitude or attitude */
+    double camera_hfov_deg;      /* horizontal field of view, 5 to 170 degrees; needed when steps give altitude or attitude */
     double max_tilt_deg;         /* steps tilted further from nadir are not scored (10) */
     int template_width;          /* frames are downscaled to this width before scoring (160; 0: full) */
     double sparse;               /* share of template pixels scored, (0, 1] (1: dense) */
@@ -222,13 +222,13 @@ typedef struct trn_localizer_config {
     const char* sampling;        /* "kld" (NULL), "importance", "rejection" */
     size_t min_particles, max_particles; /* KLD bounds (100, 2000; the initial set is max_particles) */
     size_t particles;            /* importance / rejection: fixed count (1000) */
-    double init_radius_m;        /* initial particles uniform within this radius of the start (300) */
+    double init_radius_m;        /* initial particles uniform within this radius of the start (ours 50: a GNSS-loss handover; dissertation 300) */
     double reinit_radius_m;      /* re-initialisation radius after a collapse (300) */
     /* "compass" (NULL): each step's heading_rad sets the particles' yaw; "none": no compass, yaw is
      * estimated (start_heading_rad NaN: uniform prior, else Gaussian with start_heading_sd_deg) and
      * turned by observation.odometry_yaw_rad, the odometry then in the previous frame's axes. */
     const char* heading;
-    double start_heading_sd_deg; /* spread of the initial headings / yaws, degrees (NaN: 2, the motion model's eps_rot) */
+    double start_heading_sd_deg; /* spread of the initial headings, degrees (NaN: 2, the motion model's eps_rot; heading "none": compassless_yaw_sd_deg) */
     /* The filter's reading of the dissertation (docs/PROFILES.md): "ours" (NULL) or "dissertation",
      * which also sets what this struct has no field for (KLD quantile, motion model, its noise). Take
      * the defaults from trn_localizer_config_for_profile, then change fields: its values are the
@@ -236,8 +236,15 @@ typedef struct trn_localizer_config {
     const char* profile;
     int lock_monitor;            /* nonzero: the wrong-lock monitor is on (ours: 1; dissertation: 0) */
     double map_origin_lat_deg, map_origin_lon_deg; /* of map pixel (0, 0), north up: estimates in lat/lon too (NaN: none) */
+    /* heading "none" with start_heading_rad NaN (a uniform yaw prior): max_particles is raised to at
+     * least this (ours: 6000, the initial set must cover every yaw; 0: off, as the CLI's
+     * --max-particles and Python's max_particles given do; dissertation: 0). */
+    size_t compassless_max_particles;
+    /* heading "none" with a start_heading_rad and start_heading_sd_deg NaN: the yaw prior's sd (10) */
+    double compassless_yaw_sd_deg;
 } trn_localizer_config;
-/* The C++ defaults (profile "ours"); start_x, start_y NaN (to be set). */
+/* The defaults of the profile "ours": the same as `trnkit localize` and Python's (docs/EMBEDDING.md,
+ * "Defaults"); start_x, start_y NaN (to be set). */
 TRN_C_API trn_localizer_config trn_localizer_config_default(void);
 /* The defaults of a profile ("ours", "dissertation"; NULL: "ours"), with `profile` set to it. An
  * unknown name is TRN_INVALID_ARGUMENT naming both, and *out is left as it was. */
@@ -291,6 +298,11 @@ TRN_C_API trn_status trn_localizer_create_masked(trn_backend* backend, const uin
                                                  const uint8_t* valid, ptrdiff_t valid_stride, double metres_per_pixel,
                                                  const trn_localizer_config* config, trn_localizer** out);
 TRN_C_API trn_status trn_localizer_step(trn_localizer* localizer, const trn_observation* observation, trn_estimate* out);
+/* Re-anchors the filter on a new position (e.g. a GNSS fix came back): particles uniform within
+ * radius_m metres of (x, y) map pixels, the config kept; headings around heading_rad (NaN: without a
+ * compass the yaw learnt so far, with one the next step's heading). The lock state reads "unknown"
+ * again until the next fix. TRN_INVALID_ARGUMENT off the map or with radius_m not > 0. */
+TRN_C_API trn_status trn_localizer_reanchor(trn_localizer* localizer, double x, double y, double radius_m, double heading_rad);
 TRN_C_API void trn_localizer_destroy(trn_localizer* localizer);
 
 /* ---- images and recorded flights ---------------------------------------------------------- */

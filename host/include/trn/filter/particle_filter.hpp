@@ -117,9 +117,9 @@ struct FilterConfig {
     std::size_t max_particles = 2000;  // also the size of the initial set unless initial_particles says
     std::size_t fixed_particles = 1000;  // importance / rejection sampling
     std::size_t initial_particles = 0;   // size of the initial set; 0: max_particles (KLD) or fixed_particles
-    // Initialisation: uniform within this radius of the last known position. The library default
-    // is the dissertation's 300 m; `trnkit localize` passes 50 m (a GNSS-loss handover: the last
-    // fix is metres, not hundreds of metres, off).
+    // Initialisation: uniform within this radius of the last known position. FilterConfig{} keeps
+    // the dissertation's 300 m; the online Localizer's preset under ours (localize::localizer_profile,
+    // the CLI's, C's and Python's default) takes 50 m, a GNSS-loss handover (localizer_defaults.hpp).
     double init_radius_m = 300;
     double reinit_radius_m = 300;  // collapse re-initialisation radius around the last estimate
     // Spread of the initial headings around the given one (degrees); NaN: motion.eps_rot_deg.
@@ -221,6 +221,12 @@ public:
 
     // Particles uniform within init_radius_m of (x, y) map pixels, headings around `heading_rad`.
     void initialise(double x, double y, double heading_rad);
+    // Re-initialises an initialised filter around a new position (a GNSS fix): the initial set
+    // uniform within radius_m of (x, y), headings around heading_rad; NaN: without a compass the
+    // yaw the filter has learnt (as a collapse re-initialisation keeps it), with one each particle's
+    // next compass step. The configuration, the counters and the odometry's last step are kept; the
+    // lock monitor starts over (its verdict "unknown" until a fix). Throws trn::Error naming radius_m.
+    void reanchor(double x, double y, double radius_m, double heading_rad);
     StepReport step(const FilterInput& input);
 
     const std::vector<Particle>& particles() const { return particles_; }

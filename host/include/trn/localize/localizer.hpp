@@ -22,6 +22,9 @@
 TRN_API_BEGIN
 namespace trn::localize {
 
+// A camera's horizontal field of view the Localizer takes, degrees (outside: a unit mistake).
+inline constexpr double kMinCameraHfovDeg = 5, kMaxCameraHfovDeg = 170;
+
 struct LocalizerConfig {
     filter::FilterConfig filter;             // metres_per_pixel is replaced by the map's
     filter::BackendScorerOptions scoring;    // template width, dense or sparse scoring (min_valid_fraction: filter.update's)
@@ -35,23 +38,20 @@ struct LocalizerConfig {
     // Latitude / longitude of map pixel (0, 0) on a north-up map: estimates then also come as
     // latitude / longitude (sim::map_pixel_to_latlon's local projection). None: map pixels only.
     std::optional<sim::GeoOrigin> map_origin;
+    // Without a compass (filter.heading = HeadingMode::None) and with a uniform yaw prior
+    // (start_heading_rad NaN), the most particles (and, under ours, the initial set) is at least
+    // this: the initial set must cover every yaw over the start disc. 0: filter.max_particles, as
+    // with a compass. localizer_profile sets it (localizer_defaults.hpp); LocalizerConfig{} leaves 0.
+    std::size_t compassless_max_particles = 0;
+    // Without a compass and with a yaw prior (start_heading_rad given), the prior's sd in degrees when
+    // filter.init_heading_sd_deg is NaN (NaN here too: motion.eps_rot_deg, as with a compass).
+    double compassless_yaw_sd_deg = NAN;
 
     void validate() const;  // throws trn::Error naming the field ("start_x", "camera_hfov_deg", ...)
 };
 
-// The presets of trnkit's --profile (filter::Profile; particle_filter.hpp says what each value of
-// the dissertation's comes from): LocalizerConfig{} with the profile's filter.
-inline LocalizerConfig localizer_profile(filter::Profile profile) {
-    LocalizerConfig c;
-    c.filter = filter::profile_config(profile);
-    return c;
-}
-inline LocalizerConfig dissertation_profile() { return localizer_profile(filter::Profile::Dissertation); }
-
-// The start prior of a recorded flight's localization (`trnkit localize`, Python's localize())
-// under our profile: a handover after GNSS loss, whose last fix is good to metres. The dissertation
-// profile keeps the text's 300 m (FilterConfig::init_radius_m).
-inline constexpr double kHandoverInitRadiusM = 50;
+// The presets (localizer_profile), the front ends' shared defaults and the rules above applied:
+// trn/localize/localizer_defaults.hpp.
 
 // One camera frame and what the other sensors said since the previous one.
 struct Observation {
@@ -124,6 +124,13 @@ public:
     // Scatters the particles around (x, y) map pixels, headings around heading_rad (NaN: kept
     // unknown until a step brings one). Optional: the first step starts at config.start_* itself.
     void start(double x, double y, double heading_rad);
+    // Re-anchors the filter on a new position (e.g. a GNSS fix came back): its particles scattered
+    // uniformly within radius_m metres of (x, y) map pixels, keeping the configuration; headings
+    // around heading_rad (NaN: without a compass the yaw learnt so far, with one the next step's
+    // heading). The lock state reads "unknown" again until the next fix; no velocity across it.
+    // Before the first step it starts the filter there. Throws trn::Error naming what is wrong
+    // (radius_m not > 0, or the disc of radius_m around (x, y) off the map).
+    void reanchor(double x, double y, double radius_m, double heading_rad = NAN);
     Estimate step(const Observation& observation);
 
     bool started() const { return started_; }
@@ -132,16 +139,22 @@ public:
     const LocalizerConfig& config() const { return config_; }
     double metres_per_pixel() const { return mpp_; }
     const DeviceInfo& backend_info() const { return backend_.info(); }
+    int map_width() const { return map_width_; }
+    int map_height() const { return map_height_; }
 
 private:
     void add_uncertainty(const filter::Estimate& f, double time_s, Estimate& e);
+    void check_on_map(double x, double y, double radius_m, const char* what) const;  // throws naming `what` and the map's size
+    void check_observation(const Observation& o) const;
 
     LocalizerConfig config_;
     double mpp_;
     Backend& backend_;
     std::unique_ptr<filter::BackendScorer> scorer_;
     std::unique_ptr<filter::ParticleFilter> filter_;
+    int map_width_ = 0, map_height_ = 0;
     bool started_ = false;
+    bool heading_known_ = false;  // a heading was given (start or step): compass mode may score frames
     Estimate previous_;  // for the velocity (time_s NaN: none)
 };
 
