@@ -38,6 +38,7 @@
 #include "trn/io/mavlink_stream.hpp"
 #include "trn/localize/air_inputs.hpp"
 #include "trn/localize/localization.hpp"
+#include "trn/localize/localizer_defaults.hpp"
 #include "trn/localize/mavlink_fix.hpp"
 
 namespace trn::bench {
