@@ -124,6 +124,24 @@ void apply_photo_defaults(LocalizeArgs& a, double init_radius_m) {
     std::cerr << "trnkit: note: --photos: starting within --init-radius-m " << init_radius_m << " m of the first photo's GPS fix\n";
 }
 
+// `--dataset DIR` whose rows carry no heading (ImuX..W empty: an import-photos folder, a camera
+// without a compass) and neither --heading nor --start-heading-deg: a compass filter would have no
+// heading to score at (the Localizer refuses it), so the run is compass-less, as --photos is, and
+// says so. Judged on the first row; an unreadable folder is left to the full read's error.
+void apply_headingless_dataset_default(LocalizeArgs& a) {
+    if (a.heading_given || !std::isnan(a.start_heading_deg) || a.inputs.dataset.empty()) return;
+    sim::AirRecord first;
+    try {
+        sim::AirReader reader(a.inputs.dataset);
+        if (!reader.next(first) || !std::isnan(first.imu.w)) return;
+    } catch (const Error&) {
+        return;
+    }
+    a.heading.heading = "none";
+    std::cerr << "trnkit: note: " << a.inputs.dataset << " has no heading (ImuX..W empty): localizing without a compass "
+              << "(--heading none); give --start-heading-deg to use a compass filter with that heading\n";
+}
+
 // The import into --dataset (an import-photos folder: replaced whole or not at all; its localize/
 // output stays), after every check of the options.
 void import_photos_into_dataset(LocalizeArgs& a) {
@@ -177,6 +195,7 @@ void localize(LocalizeArgs a) {
     if (a.max_given->count()) preset.compassless_max_particles = 0;  // the count given is the count
     if (a.init_radius_given->count() || !dissertation) profile.init_radius_m = a.init_radius_m;
     if (!a.photos.empty()) apply_photo_defaults(a, profile.init_radius_m);
+    else if (!a.print_config) apply_headingless_dataset_default(a);
     {
         // The most particles as the run will have them (the library's compass-less rule applied).
         localize::LocalizerConfig run = preset;

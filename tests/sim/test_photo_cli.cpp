@@ -103,6 +103,7 @@ TEST_F(PhotoCli, PhotosBecomeALocalizedFlightFromTheFirstGpsFix) {
 
     r = run_trnkit("localize --dataset " + path("air") + " --odometry visual --start-from-gps 15 --backend cpu --no-plots --out " + path("loc"));
     ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_HAS(r.output, "has no heading (ImuX..W empty): localizing without a compass (--heading none)");  // photos have no compass
     EXPECT_HAS(r.output, "estimate to camera GPS: mean");
     EXPECT_HAS(r.output, "its fix lags the photo");
     EXPECT_HAS(r.output, "gps_track.csv: " + path("loc") + "/gps_track.csv");
