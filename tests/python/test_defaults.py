@@ -82,6 +82,14 @@ def test_visual_odometry_is_off_unless_asked_and_the_cli_names_it_odometry_visua
     assert cli("--odometry", "visual")["visual_odometry"] is True
 
 
+def test_the_doc_table_names_every_default():
+    with open(os.environ["TRN_EMBEDDING_DOC"]) as f:
+        doc = f.read()
+    table = doc[doc.index("## Defaults"):doc.index("## ", doc.index("## Defaults") + 3)]
+    for name in NAMES:
+        assert f"`{name}`" in table, f"{name}: not in docs/EMBEDDING.md's defaults table"
+
+
 def test_print_config_reads_nothing():
     # No --dataset needed; without --print-config it is required, as before.
     assert cli()["backend"] == "fastest"

@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 import trnkit
+from test_doc_example import doc_example
 from test_localizer import flight, shared_data  # noqa: F401 (the real flight's AIR folder, a pytest fixture)
 
 
@@ -67,3 +68,11 @@ def test_odometry_given_wins_over_the_visual():
         assert loc.step(frame, heading_rad=0.0, scale=1.0)["odometry_source"] == "none"
     with trnkit.Localizer(ortho, 1.0, "cpu", start=(150, 130), start_heading_rad=0.0, visual_odometry=True) as loc:
         assert [loc.step(frame, heading_rad=0.0, scale=1.0)["odometry_source"] for _ in range(2)][0] == "visual:start"
+
+
+def test_the_doc_example_runs_visual_odometry_on_the_real_flight(flight, capsys):  # noqa: F811
+    air, map_path = flight
+    mpp = trnkit.localize(dataset=air, map=map_path, backend="cpu", rate_hz=0.5)["metres_per_pixel"]
+    exec(compile(doc_example("visual_odometry.py"), "EMBEDDING.md:visual_odometry.py", "exec"), {"air": air, "map_path": map_path, "mpp": mpp})
+    lines = capsys.readouterr().out.splitlines()
+    assert len(lines) == 16 and lines[0].startswith("visual:start") and all(l.startswith("visual:") for l in lines)
