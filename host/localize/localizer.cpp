@@ -85,6 +85,9 @@ const char* Localizer::visual_odometry(const Observation& o, filter::FilterInput
     const bool given = !std::isnan(o.odometry_east_m) && !std::isnan(o.odometry_north_m);
     if (!visual_) return given ? "given" : "none";
     // Every frame is tracked (the reference stays the last frame), the caller's odometry wins when given.
+    if (!in.frame.empty() && (in.frame.width < 16 || in.frame.height < 16))
+        throw Error("localizer: visual_odometry tracks each frame, and this one is " + std::to_string(in.frame.width) + "x" +
+                    std::to_string(in.frame.height) + " px: at least 16x16 is needed (or turn visual_odometry off)");
     const bool compass = config_.filter.heading == filter::HeadingMode::Compass;
     const double metres_per_px = in.frame.empty() ? NAN : in.map_px_per_camera_px * mpp_;
     const filter::VisualOdometryTrack::Step v = visual_->track.next(in.frame, metres_per_px, compass ? o.heading_rad : NAN);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "filter_test_world.hpp"
+#include "trn/error.hpp"
 #include "trn/filter/flight_source.hpp"
 #include "trn/localize/localization.hpp"
 #include "trn/localize/localizer.hpp"
@@ -113,6 +114,26 @@ TEST(LocalizerVisualOdometryRule, OdometryGivenIsUsedAsGiven) {
             EXPECT_STREQ(b.odometry_source, "none");
             EXPECT_TRUE(b.odometry_lost);
         }
+    }
+}
+
+// A frame too small to track is refused naming the option, not failed deep in the tracker.
+TEST(LocalizerVisualOdometryRule, TooSmallAFrameIsRefusedNamingTheOption) {
+    const TestWorld& w = test_world();
+    auto backend = default_registry().create("cpu");
+    localize::LocalizerConfig c = small_config(true);
+    c.start_x = c.start_y = 400, c.start_heading_rad = 0, c.visual_odometry = true;
+    localize::Localizer loc(w.map.image.view(), w.map.metres_per_pixel, *backend, c);
+    const GrayImage& world = w.world.image;
+    localize::Observation o;
+    o.frame = GrayView{world.pixels.data(), 12, 12, world.width};
+    o.map_px_per_camera_px = 1, o.heading_rad = 0;
+    try {
+        loc.step(o);
+        FAIL() << "a 12x12 frame was tracked";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("visual_odometry"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("12x12"), std::string::npos) << e.what();
     }
 }
 
