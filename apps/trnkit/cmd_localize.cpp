@@ -170,6 +170,7 @@ localize::LocalizerConfig settings_of(const LocalizeArgs& a, localize::Localizer
     if (!std::isnan(a.heading_sd_deg) || !dissertation) cfg.init_heading_sd_deg = a.heading_sd_deg;
     apply_filter_model_options(a.model, cfg);
     lc.max_tilt_deg = a.max_tilt_deg;
+    lc.visual_odometry = a.odometry == "visual";  // the library's visual_odometry (run_localization runs it on the flight)
     lc.start_heading_rad = a.start_heading_deg * kDeg;
     apply_heading_options(a.heading, lc, !std::isnan(a.start_heading_deg) ? "--start-heading-deg" : !std::isnan(a.heading_sd_deg) ? "--heading-sd-deg" : "");
     return lc;

@@ -67,6 +67,7 @@ trn::localize::LocalizerConfig to_config(const trn_localizer_config& c) {
         throw InvalidArgument("config->map_origin_lat_deg and map_origin_lon_deg go together (both NaN: no georeference)");
     if (!std::isnan(c.map_origin_lat_deg)) l.map_origin = trn::sim::GeoOrigin{c.map_origin_lat_deg, c.map_origin_lon_deg};
     l.compassless_max_particles = c.compassless_max_particles, l.compassless_yaw_sd_deg = c.compassless_yaw_sd_deg;
+    l.visual_odometry = c.visual_odometry != 0;
     return l;
 }
 
@@ -116,6 +117,7 @@ trn_localizer_config config_of(trn::filter::Profile profile) {
     c.lock_monitor = l.filter.lock.enabled ? 1 : 0;
     c.map_origin_lat_deg = c.map_origin_lon_deg = NAN;
     c.compassless_max_particles = l.compassless_max_particles, c.compassless_yaw_sd_deg = l.compassless_yaw_sd_deg;
+    c.visual_odometry = l.visual_odometry ? 1 : 0;
     return c;
 }
 
@@ -193,6 +195,7 @@ trn_status trn_localizer_step(trn_localizer* localizer, const trn_observation* o
         c.frame_missing = e.frame_missing, c.too_oblique = e.too_oblique, c.odometry_lost = e.odometry_lost, c.reinitialised = e.reinitialised;
         c.tilt_deg = e.tilt_deg;
         c.lock_state = trn::localize::lock_state_name(e.lock);
+        c.odometry_source = e.odometry_source;
         c.lock_contrast = e.lock.contrast, c.lock_drift_m = e.lock.drift_m;
         c.score_ms = e.score_ms, c.step_ms = e.step_ms;
         c.yaw_sd = e.yaw_sd;

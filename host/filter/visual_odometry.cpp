@@ -10,6 +10,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "trn/detail/angles.hpp"
+#include "trn/filter/visual_odometry_track.hpp"
 #include "trn/error.hpp"
 
 namespace trn::filter {
@@ -155,39 +156,23 @@ GroundStep ground_displacement(double dx_px, double dy_px, double metres_per_px,
 
 VisualOdometrySource::VisualOdometrySource(FlightSource& inner, double map_metres_per_pixel, const VisualOdometryOptions& options,
                                            bool own_yaw)
-    : inner_(inner), mpp_(map_metres_per_pixel), vo_(options), own_yaw_(own_yaw) {
+    : inner_(inner), mpp_(map_metres_per_pixel) {
     if (!(map_metres_per_pixel > 0)) throw Error("VisualOdometrySource: map_metres_per_pixel must be > 0");
+    track_ = std::make_unique<VisualOdometryTrack>(options, own_yaw);
 }
+
+VisualOdometrySource::~VisualOdometrySource() = default;
+
+const VisualOdometrySource::Counts& VisualOdometrySource::counts() const { return track_->counts(); }
+
+const FrameMotion& VisualOdometrySource::last_motion() const { return track_->last_motion(); }
 
 bool VisualOdometrySource::next(FlightSample& s) {
     if (!inner_.next(s)) return false;
-    s.odometry_east_m = s.odometry_north_m = s.odometry_yaw_rad = NAN;
-    if (s.image.pixels.empty()) {  // keep the reference: the next frame is matched across the gap
-        ++counts_.no_frame;
-        s.odometry_source = "visual:no-frame";
-        return true;
-    }
-    last_ = vo_.track(s.image.view());
-    const double metres_per_px = s.map_px_per_camera_px * mpp_;
-    if (!have_reference_) {
-        have_reference_ = true;
-        s.odometry_east_m = east_m_, s.odometry_north_m = north_m_;
-        s.odometry_yaw_rad = own_yaw_ ? yaw_ : s.heading_rad;
-        s.odometry_source = "visual:start";
-    } else if (last_.ok() && std::isfinite(ref_metres_per_px_) && std::isfinite(ref_heading_)) {
-        const GroundStep g = ground_displacement(last_.dx_px, last_.dy_px, ref_metres_per_px_, ref_heading_);
-        east_m_ += g.east_m, north_m_ += g.north_m;
-        s.odometry_east_m = east_m_, s.odometry_north_m = north_m_;
-        if (own_yaw_ && std::isfinite(last_.rotation_rad)) yaw_ = wrap_angle(yaw_ + last_.rotation_rad);
-        s.odometry_yaw_rad = own_yaw_ ? yaw_ : s.heading_rad;
-        ++(last_.method == MotionMethod::Features ? counts_.features : counts_.phase);
-        s.odometry_source = last_.method == MotionMethod::Features ? "visual:features" : "visual:phase";
-    } else {
-        ++counts_.lost;
-        s.odometry_source = "visual:lost";
-    }
-    ref_metres_per_px_ = metres_per_px > 0 ? metres_per_px : NAN;
-    ref_heading_ = own_yaw_ ? yaw_ : s.heading_rad;
+    const VisualOdometryTrack::Step v =
+        track_->next(s.image.pixels.empty() ? GrayView{} : s.image.view(), s.map_px_per_camera_px * mpp_, s.heading_rad);
+    s.odometry_east_m = v.east_m, s.odometry_north_m = v.north_m, s.odometry_yaw_rad = v.yaw_rad;
+    s.odometry_source = v.source;
     return true;
 }
 

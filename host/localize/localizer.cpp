@@ -5,6 +5,8 @@
 #include <cstdio>
 
 #include "trn/detail/angles.hpp"
+#include "trn/filter/visual_odometry_track.hpp"
+#include "trn/localize/air_frames.hpp"
 #include "trn/detail/covariance2.hpp"
 #include "trn/error.hpp"
 #include "trn/sim/camera.hpp"
@@ -52,6 +54,16 @@ void LocalizerConfig::validate() const {
     if (scoring.template_width < 0) throw Error("localizer config: scoring.template_width must be >= 0 (0: full width)");
 }
 
+// The frame's visual odometry, as `trnkit localize --odometry visual` turns it into the Localizer's
+// input: the track from the first frame (VisualOdometryTrack), its increments (OdometryIncrements)
+// and, without a compass, the same in the previous frame's axes with the yaw's change.
+struct Localizer::VisualOdometryState {
+    explicit VisualOdometryState(bool own_yaw) : track({}, own_yaw) {}
+    filter::VisualOdometryTrack track;
+    OdometryIncrements increments;
+    CompasslessOdometry compassless;
+};
+
 Localizer::Localizer(GrayView map, double metres_per_pixel, Backend& backend, const LocalizerConfig& config, GrayView valid)
     : config_(resolved_config(config)), mpp_(metres_per_pixel), backend_(backend), map_width_(map.width), map_height_(map.height) {
     if (!(metres_per_pixel > 0) || !std::isfinite(metres_per_pixel))
@@ -64,9 +76,28 @@ Localizer::Localizer(GrayView map, double metres_per_pixel, Backend& backend, co
     config_.scoring.min_valid_fraction = config_.filter.update.min_valid_fraction;  // one knob: the update's
     scorer_ = std::make_unique<filter::BackendScorer>(backend, map, config_.scoring, valid);
     filter_ = std::make_unique<filter::ParticleFilter>(*scorer_, config_.filter);
+    if (config_.visual_odometry) visual_ = std::make_unique<VisualOdometryState>(config_.filter.heading == filter::HeadingMode::None);
 }
 
 Localizer::~Localizer() = default;
+
+const char* Localizer::visual_odometry(const Observation& o, filter::FilterInput& in) {
+    const bool given = !std::isnan(o.odometry_east_m) && !std::isnan(o.odometry_north_m);
+    if (!visual_) return given ? "given" : "none";
+    // Every frame is tracked (the reference stays the last frame), the caller's odometry wins when given.
+    if (!in.frame.empty() && (in.frame.width < 16 || in.frame.height < 16))
+        throw Error("localizer: visual_odometry tracks each frame, and this one is " + std::to_string(in.frame.width) + "x" +
+                    std::to_string(in.frame.height) + " px: at least 16x16 is needed (or turn visual_odometry off)");
+    const bool compass = config_.filter.heading == filter::HeadingMode::Compass;
+    const double metres_per_px = in.frame.empty() ? NAN : in.map_px_per_camera_px * mpp_;
+    const filter::VisualOdometryTrack::Step v = visual_->track.next(in.frame, metres_per_px, compass ? o.heading_rad : NAN);
+    const OdometryIncrements::Step step = visual_->increments.next(v.east_m, v.north_m);
+    const CompasslessOdometry::Step own = compass ? CompasslessOdometry::Step{} : visual_->compassless.next(step, v.yaw_rad);
+    if (given) return "given";
+    if (compass) in.odometry_east_m = step.east_m, in.odometry_north_m = step.north_m;
+    else in.odometry_east_m = own.right_m, in.odometry_north_m = own.forward_m, in.odometry_yaw_rad = own.rotation_rad;
+    return v.source;
+}
 
 // Map pixels (x east, y south) to metres north/east: north = -y, so the cross term changes sign.
 void Localizer::add_uncertainty(const filter::Estimate& f, double time_s, Estimate& e) {
@@ -192,6 +223,7 @@ Estimate Localizer::step(const Observation& o) {
         throw Error("localizer: heading \"compass\" scores a frame at the compass heading, and none was ever given: no heading_rad "
                     "in any step and no start_heading_rad in the config; give one, or use heading \"none\" (no compass: the yaw is "
                     "estimated)");
+    e.odometry_source = visual_odometry(o, in);
     const filter::StepReport rep = filter_->step(in);
     e.x = rep.estimate.x, e.y = rep.estimate.y, e.yaw = rep.estimate.yaw;
     e.best_x = rep.estimate.best_x, e.best_y = rep.estimate.best_y, e.best_yaw = rep.estimate.best_yaw, e.best_ncc = rep.estimate.best_ncc;

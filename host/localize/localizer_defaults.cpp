@@ -9,6 +9,7 @@ LocalizerConfig localizer_profile(filter::Profile profile) {
     LocalizerConfig c;
     c.filter = filter::profile_config(profile);
     c.compassless_yaw_sd_deg = kCompasslessYawSdDeg;
+    c.visual_odometry = kDefaultVisualOdometry;
     if (profile == filter::Profile::Ours) {
         c.filter.init_radius_m = kHandoverInitRadiusM;
         c.compassless_max_particles = kCompasslessUniformMaxParticles;

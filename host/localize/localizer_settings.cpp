@@ -30,6 +30,7 @@ std::string settings_json(const LocalizerConfig& c, const std::map<std::string, 
     j["template_width"] = c.scoring.template_width;
     j["sparse"] = c.scoring.sampling.kind == Sampling::Kind::Random ? c.scoring.sampling.fraction : 1.0;
     j["camera_hfov_deg"] = number(c.camera_hfov_deg), j["start_heading_rad"] = number(c.start_heading_rad);
+    j["visual_odometry"] = c.visual_odometry;
     return io::json_line(j);
 }
 

@@ -113,8 +113,11 @@ LocalizationResult run_on_map(const LocalizationSpec& spec, GrayView map, GrayVi
     RunInfo info;  // what the flight adds to the Localizer's part of the RunInfo: stride, frames, rate
     auto finish = [&](filter::FlightSource& recorded, filter::VisualOdometrySource& visual) {
         if (hooks.started) hooks.started(info);
+        // Visual odometry (asked by spec.odometry or cfg.visual_odometry) comes from the source, by the
+        // Localizer's own rules (filter::VisualOdometryTrack), so the Localizer takes it as given.
+        const bool use_visual = spec.odometry == OdometryKind::Visual || cfg.visual_odometry;
+        cfg.visual_odometry = false;
         Localizer localizer(map, metres_per_pixel, backend, cfg, valid);
-        const bool use_visual = spec.odometry == OdometryKind::Visual;
         StepFn step;  // the row as the result will have it: with latitude / longitude
         if (hooks.step)
             step = [&](const LocalizationRow& r, const Estimate& e) {

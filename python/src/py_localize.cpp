@@ -70,7 +70,8 @@ localize::LocalizerConfig make_config(std::optional<std::pair<double, double>> s
                                       std::optional<double> reinit_radius_m, const std::string& heading, std::optional<double> start_heading_sd_deg,
                                       const std::string& profile, std::optional<bool> lock_monitor,
                                       std::optional<std::pair<double, double>> map_origin,
-                                      std::optional<std::size_t> compassless_max_particles = std::nullopt) {
+                                      std::optional<std::size_t> compassless_max_particles = std::nullopt,
+                                      bool visual_odometry = localize::kDefaultVisualOdometry) {
     // The profile first (ours or dissertation: docs/PROFILES.md); a keyword given (not None) over it.
     localize::LocalizerConfig c;
     try {
@@ -114,6 +115,7 @@ localize::LocalizerConfig make_config(std::optional<std::pair<double, double>> s
     if (init_radius_m) c.filter.init_radius_m = *init_radius_m;
     if (reinit_radius_m) c.filter.reinit_radius_m = *reinit_radius_m;
     if (map_origin) c.map_origin = sim::GeoOrigin{map_origin->first, map_origin->second};
+    c.visual_odometry = visual_odometry;
     return c;
 }
 
@@ -129,6 +131,7 @@ pyb::dict estimate_dict(const localize::Estimate& e) {
     d["frame_missing"] = e.frame_missing, d["too_oblique"] = e.too_oblique, d["tilt_deg"] = e.tilt_deg;
     d["odometry_lost"] = e.odometry_lost, d["reinitialised"] = e.reinitialised;
     d["lock_state"] = localize::lock_state_name(e.lock);
+    d["odometry_source"] = e.odometry_source;
     d["lock_contrast"] = e.lock.contrast, d["lock_drift_m"] = e.lock.drift_m;
     d["score_ms"] = e.score_ms, d["step_ms"] = e.step_ms;
     d["yaw_sd"] = e.yaw_sd;
@@ -320,12 +323,12 @@ Same inputs, same seed: the same estimates as `trnkit localize`, bit for bit.)")
                           std::optional<std::size_t> particles, std::optional<double> init_radius_m, std::optional<double> reinit_radius_m,
                           const std::string& heading, std::optional<double> start_heading_sd_deg, const std::string& profile,
                           std::optional<bool> lock_monitor, std::optional<std::pair<double, double>> map_origin,
-                          std::optional<std::size_t> compassless_max_particles) {
+                          std::optional<std::size_t> compassless_max_particles, bool visual_odometry) {
                  auto l = std::make_shared<PyLocalizer>();
                  const localize::LocalizerConfig c =
                      make_config(start, start_heading_rad, camera_hfov_deg, max_tilt_deg, template_width, sparse, seed, conversion, sampling,
                                  min_particles, max_particles, particles, init_radius_m, reinit_radius_m, heading, start_heading_sd_deg, profile,
-                                 lock_monitor, map_origin, compassless_max_particles);
+                                 lock_monitor, map_origin, compassless_max_particles, visual_odometry);
                  const BorrowedGray view = gray_view(map, "map");
                  const std::optional<BorrowedGray> mask =
                      valid.is_none() ? std::nullopt : std::optional<BorrowedGray>(gray_view(valid, "valid"));
@@ -348,6 +351,7 @@ Same inputs, same seed: the same estimates as `trnkit localize`, bit for bit.)")
              "particles"_a = pyb::none(), "init_radius_m"_a = pyb::none(), "reinit_radius_m"_a = pyb::none(), "heading"_a = "compass",
              "start_heading_sd_deg"_a = pyb::none(), "profile"_a = "ours", "lock_monitor"_a = pyb::none(),
              "map_origin"_a = pyb::none(), "compassless_max_particles"_a = pyb::none(),
+             "visual_odometry"_a = localize::kDefaultVisualOdometry,
              R"(map: 2-D uint8 array; metres_per_pixel: its resolution; backend: a trnkit.Backend (python/trnkit/_localize.py
 also takes a spec string and then owns the backend).
 start: (x, y) map pixels, the last known position. start_heading_rad: centre of the initial headings
@@ -356,7 +360,9 @@ altitude_agl_m or attitude. heading: "compass" (each step's heading_rad sets the
 (no compass: yaw estimated, start_heading_rad None = uniform prior, else Gaussian with
 start_heading_sd_deg degrees; steps give odometry in the previous frame's axes (right_m, forward_m)
 and odometry_yaw_rad). map_origin: (latitude, longitude) of map pixel (0, 0) on a north-up map
-(estimates then also in degrees), or None. The rest are the filter's settings (trn/filter/particle_filter.hpp).)")
+(estimates then also in degrees), or None. visual_odometry: a step without odometry takes it from its
+frame against the previous one (as `trnkit localize --odometry visual`); odometry given wins.
+The rest are the filter's settings (trn/filter/particle_filter.hpp).)")
         .def("step", &step, "frame"_a = pyb::none(), pyb::kw_only(), "odometry"_a = pyb::none(), "heading_rad"_a = pyb::none(),
              "altitude_agl_m"_a = pyb::none(), "scale"_a = pyb::none(), "attitude"_a = pyb::none(), "odometry_yaw_rad"_a = pyb::none(),
              "time_s"_a = pyb::none(),
@@ -367,7 +373,8 @@ pitch_rad) or None (a tilted frame is warped to nadir, beyond max_tilt_deg not s
 odometry_yaw_rad (heading="none"): the frame's rotation since the last step, clockwise, or None.
 time_s: when the frame was taken, seconds on one clock (velocity needs two steps with it), or None.
 Returns a dict: x, y, yaw (radians), best_*, spread_m, particles, off_map, frame_missing,
-too_oblique, tilt_deg, odometry_lost, reinitialised, lock_state, lock_contrast, lock_drift_m,
+too_oblique, tilt_deg, odometry_lost, reinitialised, odometry_source ("given", "none", "visual:..."),
+lock_state, lock_contrast, lock_drift_m,
 score_ms, step_ms, yaw_sd (circular sd of the yaws, radians), the covariance cov_xx_px2, cov_xy_px2,
 cov_yy_px2 (map) and cov_nn_m2, cov_ne_m2, cov_ee_m2 (north/east), eph_m, latitude_deg, longitude_deg,
 time_s, vel_north_mps, vel_east_mps, vel_var_m2ps2 (None when unknown).)")
@@ -397,18 +404,18 @@ time_s, vel_north_mps, vel_east_mps, vel_var_m2ps2 (None when unknown).)")
            std::optional<std::size_t> min_particles, std::optional<std::size_t> max_particles, std::optional<std::size_t> particles,
            std::optional<double> init_radius_m, std::optional<double> reinit_radius_m, const std::string& heading,
            std::optional<double> start_heading_sd_deg, const std::string& profile, std::optional<bool> lock_monitor,
-           std::optional<std::size_t> compassless_max_particles) {
+           std::optional<std::size_t> compassless_max_particles, bool visual_odometry) {
             return localize::settings_json(make_config(std::nullopt, start_heading_rad, camera_hfov_deg, max_tilt_deg, template_width, sparse,
                                                        seed, conversion, sampling, min_particles, max_particles, particles, init_radius_m,
                                                        reinit_radius_m, heading, start_heading_sd_deg, profile, lock_monitor, std::nullopt,
-                                                       compassless_max_particles));
+                                                       compassless_max_particles, visual_odometry));
         },
         pyb::kw_only(), "start_heading_rad"_a = pyb::none(), "camera_hfov_deg"_a = pyb::none(), "max_tilt_deg"_a = localize::LocalizerConfig{}.max_tilt_deg,
         "template_width"_a = localize::LocalizerConfig{}.scoring.template_width, "sparse"_a = 1.0, "seed"_a = filter::FilterConfig{}.seed,
         "conversion"_a = filter::FilterConfig{}.conversion.to_string(), "sampling"_a = filter::to_string(filter::FilterConfig{}.sampling),
         "min_particles"_a = pyb::none(), "max_particles"_a = pyb::none(), "particles"_a = pyb::none(), "init_radius_m"_a = pyb::none(),
         "reinit_radius_m"_a = pyb::none(), "heading"_a = "compass", "start_heading_sd_deg"_a = pyb::none(), "profile"_a = "ours",
-        "lock_monitor"_a = pyb::none(), "compassless_max_particles"_a = pyb::none(),
+        "lock_monitor"_a = pyb::none(), "compassless_max_particles"_a = pyb::none(), "visual_odometry"_a = localize::kDefaultVisualOdometry,
         "The LocalizerConfig these keywords make (as trnkit.Localizer makes it) as JSON under docs/EMBEDDING.md's names; with no "
         "keyword: the library's defaults (trn/localize/localizer_defaults.hpp).");
     m.attr("DEFAULT_BACKEND") = localize::kDefaultBackend;

@@ -171,6 +171,7 @@ class Estimate(TypedDict):  # what Localizer.step returns (a dict at run time; t
     tilt_deg: float
     odometry_lost: bool
     reinitialised: bool
+    odometry_source: Literal["given", "none", "visual:start", "visual:features", "visual:phase", "visual:lost", "visual:no-frame"]
     lock_state: Literal["none", "unknown", "ok", "weak", "inconsistent", "fix", "lost"]
     lock_contrast: float
     lock_drift_m: float
@@ -201,7 +202,7 @@ class Localizer(AbstractContextManager["Localizer"]):
                  reinit_radius_m: float | None = None, heading: Literal["compass", "none"] = "compass",
                  start_heading_sd_deg: float | None = None, profile: Literal["ours", "dissertation"] = "ours",
                  lock_monitor: bool | None = None, map_origin: tuple[float, float] | None = None,
-                 compassless_max_particles: int | None = None) -> None: ...
+                 compassless_max_particles: int | None = None, visual_odometry: bool = False) -> None: ...
     def step(self, frame: npt.NDArray[np.uint8] | None = None, *, odometry: tuple[float, float] | None = None,
              heading_rad: float | None = None, altitude_agl_m: float | None = None, scale: float | None = None,
              attitude: tuple[float, float] | None = None, odometry_yaw_rad: float | None = None,

@@ -48,7 +48,11 @@ class Localizer:
     each step then gives odometry=(right_m, forward_m) in the previous frame's axes and
     odometry_yaw_rad, the frame's rotation since then: read_air_folder's step_without_compass).
     map_origin: (latitude, longitude) in degrees of map pixel (0, 0) on a north-up map: estimates then
-    also carry latitude_deg / longitude_deg (None: map pixels only).
+    also carry latitude_deg / longitude_deg (None: map pixels only). visual_odometry: True: a step
+    given no odometry (None) takes it from its frame against the previous frame's, as `trnkit
+    localize --odometry visual` does (scaled by the previous frame's scale or altitude, turned by the
+    previous heading_rad, or with heading="none" by its own measured rotations); odometry given is
+    used as given. Each estimate's "odometry_source" says which ("given", "none", "visual:...").
 
     Use it in a `with` block or call close() to release the map and the backend."""
 
@@ -56,7 +60,8 @@ class Localizer:
                  camera_hfov_deg=None, max_tilt_deg=_D["max_tilt_deg"], template_width=_D["template_width"], sparse=_D["sparse"],
                  seed=_D["seed"], conversion=_D["conversion"], sampling=_D["sampling"], min_particles=None, max_particles=None,
                  particles=None, init_radius_m=None, reinit_radius_m=None, heading=_D["heading"], start_heading_sd_deg=None,
-                 profile="ours", lock_monitor=None, map_origin=None, compassless_max_particles=None):
+                 profile="ours", lock_monitor=None, map_origin=None, compassless_max_particles=None,
+                 visual_odometry=_D["visual_odometry"]):
         if start_heading_rad is not None and abs(start_heading_rad) > 2 * math.pi:
             warnings.warn(f"start_heading_rad={start_heading_rad} is beyond 2 pi: degrees? (math.radians converts)", YawUnitWarning,
                           stacklevel=2)
@@ -69,7 +74,7 @@ class Localizer:
             sampling=sampling, min_particles=min_particles, max_particles=max_particles, particles=particles,
             init_radius_m=init_radius_m, reinit_radius_m=reinit_radius_m, heading=heading, start_heading_sd_deg=start_heading_sd_deg,
             profile=profile, lock_monitor=lock_monitor, map_origin=None if map_origin is None else tuple(map_origin),
-            compassless_max_particles=compassless_max_particles)
+            compassless_max_particles=compassless_max_particles, visual_odometry=visual_odometry)
 
     def step(self, frame=None, *, odometry=None, heading_rad=None, altitude_agl_m=None, scale=None, attitude=None,
              odometry_yaw_rad=None, time_s=None):
@@ -87,7 +92,9 @@ class Localizer:
 
         Returns a dict: x, y, yaw (map pixels, radians), best_x, best_y, best_yaw, best_ncc (the
         best particle), spread_m, particles, off_map, frame_missing, too_oblique, tilt_deg (degrees),
-        odometry_lost, reinitialised, lock_state ("none", "unknown", "ok", "weak", "inconsistent", "fix",
+        odometry_lost, reinitialised, odometry_source (the odometry used: "given", "none", or with
+        visual_odometry "visual:start", "visual:features", "visual:phase", "visual:lost",
+        "visual:no-frame"), lock_state ("none", "unknown", "ok", "weak", "inconsistent", "fix",
         "lost"), lock_contrast, lock_drift_m, score_ms, step_ms (milliseconds), yaw_sd (circular sd of the
         particles' yaws, radians: the heading's spread), the position's covariance in the map's frame
         (cov_xx_px2, cov_xy_px2, cov_yy_px2) and north/east in metres^2 (cov_nn_m2, cov_ne_m2,

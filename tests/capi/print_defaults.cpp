@@ -35,8 +35,8 @@ int main(int argc, char** argv) {
                 num(c.init_radius_m).c_str(), num(c.reinit_radius_m).c_str(), num(c.start_heading_sd_deg).c_str(),
                 num(c.compassless_yaw_sd_deg).c_str());
     std::printf("\"lock_monitor\": %s, \"max_tilt_deg\": %s, \"template_width\": %d, \"sparse\": %s, \"camera_hfov_deg\": %s, "
-                "\"start_heading_rad\": %s}}\n",
+                "\"start_heading_rad\": %s, \"visual_odometry\": %s}}\n",
                 c.lock_monitor ? "true" : "false", num(c.max_tilt_deg).c_str(), c.template_width, num(c.sparse).c_str(),
-                num(c.camera_hfov_deg).c_str(), num(c.start_heading_rad).c_str());
+                num(c.camera_hfov_deg).c_str(), num(c.start_heading_rad).c_str(), c.visual_odometry ? "true" : "false");
     return 0;
 }

@@ -601,6 +601,40 @@ static void test_localizer(void) {
     }
 }
 
+/* Issue 43 item 4: visual odometry online. With config.visual_odometry a step without odometry (NaN)
+ * takes it from its frame against the previous one: on a small synthetic flight (80x60 views of the
+ * map moving 3 px east per step, scale 1, heading 0) every step after the first is "visual:features"
+ * or "visual:phase" and the estimate follows the camera; odometry given is used as given ("given"). */
+static void test_localizer_visual_odometry(void) {
+    trn_backend* cpu = NULL;
+    trn_localizer* loc = NULL;
+    trn_localizer_config c = trn_localizer_config_default();
+    trn_estimate e;
+    int k;
+    CHECK(c.visual_odometry == 0, "visual_odometry defaults to off, got %d", c.visual_odometry);
+    CHECK_OK(trn_backend_create("cpu", &cpu));
+    c.init_radius_m = 5, c.max_particles = 300, c.visual_odometry = 1;
+    c.start_x = 20 + 39.5, c.start_y = 40 + 29.5, c.start_heading_rad = 0;
+    CHECK_OK(trn_localizer_create(cpu, map_pixels, MAP_W, MAP_H, MAP_STRIDE, 0.5, &c, &loc));
+    for (k = 0; k < 8; ++k) {
+        trn_observation o = trn_observation_default();
+        const int x = 20 + 3 * k, y = 40;
+        o.frame = map_pixels + y * MAP_STRIDE + x, o.width = 80, o.height = 60, o.stride = MAP_STRIDE;
+        o.map_px_per_camera_px = 1, o.heading_rad = 0;
+        if (k == 7) o.odometry_east_m = 1.5, o.odometry_north_m = 0; /* given: used as given */
+        CHECK_OK(trn_localizer_step(loc, &o, &e));
+        if (k == 0) CHECK(strcmp(e.odometry_source, "visual:start") == 0, "step 0: odometry %s", e.odometry_source);
+        else if (k == 7) CHECK(strcmp(e.odometry_source, "given") == 0, "step 7: odometry %s", e.odometry_source);
+        else
+            CHECK((strcmp(e.odometry_source, "visual:features") == 0 || strcmp(e.odometry_source, "visual:phase") == 0) && !e.odometry_lost,
+                  "step %d: odometry %s, lost %d", k, e.odometry_source, e.odometry_lost);
+    }
+    CHECK(hypot(e.x - (20 + 21 + 39.5), e.y - (40 + 29.5)) < 6, "visual odometry online: (%g, %g) for (%g, %g)", e.x, e.y, 20 + 21 + 39.5,
+          40 + 29.5);
+    trn_localizer_destroy(loc);
+    trn_backend_destroy(cpu);
+}
+
 int main(int argc, char** argv) {
     trn_device_list* list = NULL;
     trn_device_info info;
@@ -631,6 +665,7 @@ int main(int argc, char** argv) {
     trn_device_list_destroy(list);
     test_errors();
     test_localizer();
+    test_localizer_visual_odometry();
     test_energy(argv[1]);
     printf("test_capi: %d passed, %d failed\n", checks - failures, failures);
     return failures ? 1 : 0;

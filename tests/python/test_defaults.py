@@ -18,7 +18,7 @@ PRINTER = os.environ.get("TRN_PRINT_DEFAULTS")
 # one observation at a time.
 NAMES = ["seed", "conversion", "sampling", "heading", "min_particles", "max_particles", "particles", "compassless_max_particles",
          "init_radius_m", "reinit_radius_m", "start_heading_sd_deg", "compassless_yaw_sd_deg", "lock_monitor", "max_tilt_deg",
-         "template_width", "sparse", "camera_hfov_deg", "start_heading_rad"]
+         "template_width", "sparse", "camera_hfov_deg", "start_heading_rad", "visual_odometry"]
 NOT_IN_C = ["backend", "rate_hz"]
 
 
@@ -74,6 +74,20 @@ def test_without_a_compass_the_same_settings_and_the_same_rule():
         assert loc.step(None, odometry=(0.0, 0.0))["particles"] == 6000
     with trnkit.Localizer(ortho, 1.0, "cpu", start=(100, 100), heading="none", max_particles=3000) as loc:
         assert loc.step(None, odometry=(0.0, 0.0))["particles"] == 3000
+
+
+def test_visual_odometry_is_off_unless_asked_and_the_cli_names_it_odometry_visual():
+    assert trnkit.localizer_defaults()["visual_odometry"] is False
+    assert cli()["visual_odometry"] is False
+    assert cli("--odometry", "visual")["visual_odometry"] is True
+
+
+def test_the_doc_table_names_every_default():
+    with open(os.environ["TRN_EMBEDDING_DOC"]) as f:
+        doc = f.read()
+    table = doc[doc.index("## Defaults"):doc.index("## ", doc.index("## Defaults") + 3)]
+    for name in NAMES:
+        assert f"`{name}`" in table, f"{name}: not in docs/EMBEDDING.md's defaults table"
 
 
 def test_print_config_reads_nothing():

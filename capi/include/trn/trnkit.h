@@ -242,6 +242,11 @@ typedef struct trn_localizer_config {
     size_t compassless_max_particles;
     /* heading "none" with a start_heading_rad and start_heading_sd_deg NaN: the yaw prior's sd (10) */
     double compassless_yaw_sd_deg;
+    /* nonzero: visual odometry online: a step whose odometry_east_m or odometry_north_m is NaN takes
+     * its odometry from its frame against the previous one, as `trnkit localize --odometry visual`
+     * (scaled by the previous frame's scale or altitude, turned by the previous heading, or without a
+     * compass by its own measured rotations); odometry given is used as given (0: off, the default). */
+    int visual_odometry;
 } trn_localizer_config;
 /* The defaults of the profile "ours": the same as `trnkit localize` and Python's (docs/EMBEDDING.md,
  * "Defaults"); start_x, start_y NaN (to be set). */
@@ -287,6 +292,9 @@ typedef struct trn_estimate {
     double latitude_deg, longitude_deg; /* of (x, y) with config.map_origin_*; NaN without */
     double time_s;                /* the observation's */
     double vel_north_mps, vel_east_mps, vel_var_m2ps2; /* from this and the previous estimate (NaN: no times) */
+    /* the odometry this step used (static): "given", "none", or with config.visual_odometry "visual:start",
+     * "visual:features", "visual:phase", "visual:lost", "visual:no-frame" */
+    const char* odometry_source;
 } trn_estimate;
 
 /* The map (8-bit grey, row stride in bytes) is uploaded to the backend here and need not outlive the

@@ -52,6 +52,13 @@ struct FrameMotion {
     bool ok() const { return method != MotionMethod::None; }
 };
 
+class VisualOdometryTrack;  // visual_odometry_track.hpp
+
+// Steps of a visual-odometry track by how they went (VisualOdometryTrack, VisualOdometrySource).
+struct VisualOdometryCounts {
+    std::size_t features = 0, phase = 0, lost = 0, no_frame = 0;
+};
+
 // Frame-to-frame tracker: each frame's features are computed once and kept for the next call.
 class VisualOdometry {
 public:
@@ -83,11 +90,12 @@ GroundStep ground_displacement(double dx_px, double dy_px, double metres_per_px,
 
 // A FlightSource whose odometry is the visual odometry of its own frames: wraps `inner` (kept
 // alive by the caller) and replaces each sample's odometry_east_m / north_m with the accumulated
-// track from the first frame (0, 0), each step scaled by the previous frame's measured altitude
-// (its map_px_per_camera_px x map_metres_per_pixel) and turned by the previous frame's measured
-// heading. A step whose motion is not found, or a sample without a frame, is NaN (the filter
-// counts it as odometry lost); the track then restarts from the current frame, the missed motion
-// is not guessed. FlightSample::odometry_source says per sample: "visual:features",
+// track from the first frame (0, 0), by VisualOdometryTrack's rules (visual_odometry_track.hpp; the
+// online Localizer's visual_odometry follows the same): each step scaled by the previous frame's
+// measured altitude (its map_px_per_camera_px x map_metres_per_pixel) and turned by the previous
+// frame's measured heading. A step whose motion is not found, or a sample without a frame, is NaN
+// (the filter counts it as odometry lost); the track then restarts from the current frame, the
+// missed motion is not guessed. FlightSample::odometry_source says per sample: "visual:features",
 // "visual:phase", "visual:lost" or "visual:no-frame" ("visual:start" for the first frame).
 // FlightSample::odometry_yaw_rad is the heading the track was turned by (NaN while lost).
 // With `own_yaw` (compass-less localization) the measured headings are not used: the track is
@@ -99,24 +107,18 @@ class VisualOdometrySource : public FlightSource {
 public:
     VisualOdometrySource(FlightSource& inner, double map_metres_per_pixel, const VisualOdometryOptions& options = {},
                          bool own_yaw = false);
+    ~VisualOdometrySource() override;
     bool next(FlightSample& sample) override;
     std::size_t frames_hint() const override { return inner_.frames_hint(); }
 
-    struct Counts {
-        std::size_t features = 0, phase = 0, lost = 0, no_frame = 0;
-    };
-    const Counts& counts() const { return counts_; }
-    const FrameMotion& last_motion() const { return last_; }
+    using Counts = VisualOdometryCounts;
+    const Counts& counts() const;
+    const FrameMotion& last_motion() const;
 
 private:
     FlightSource& inner_;
     double mpp_;
-    VisualOdometry vo_;
-    FrameMotion last_;
-    Counts counts_;
-    bool have_reference_ = false, own_yaw_ = false;
-    double ref_metres_per_px_ = NAN, ref_heading_ = NAN, yaw_ = 0;
-    double east_m_ = 0, north_m_ = 0;
+    std::unique_ptr<VisualOdometryTrack> track_;
 };
 
 }  // namespace trn::filter

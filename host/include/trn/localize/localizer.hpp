@@ -46,6 +46,14 @@ struct LocalizerConfig {
     // Without a compass and with a yaw prior (start_heading_rad given), the prior's sd in degrees when
     // filter.init_heading_sd_deg is NaN (NaN here too: motion.eps_rot_deg, as with a compass).
     double compassless_yaw_sd_deg = NAN;
+    // Visual odometry online (issue 43 item 4): a step whose odometry_east_m or odometry_north_m is NaN
+    // (not given) takes its odometry from its own frame against the previous frame's, by the rules of
+    // `trnkit localize --odometry visual` (filter::VisualOdometryTrack: scaled by the previous frame's
+    // map_px_per_camera_px or altitude, turned by the previous step's heading_rad, or without a compass
+    // by its own summed rotations, which then give odometry_yaw_rad). Odometry the caller gives is
+    // used as given. Every frame is tracked either way, so the visual odometry is ready when the
+    // caller's stops. Estimate::odometry_source says which was used. Default: kDefaultVisualOdometry.
+    bool visual_odometry = false;
 
     void validate() const;  // throws trn::Error naming the field ("start_x", "camera_hfov_deg", ...)
 };
@@ -99,6 +107,10 @@ struct Estimate {
     bool too_oblique = false;                       // the attitude tilted the camera beyond max_tilt_deg
     double tilt_deg = 0;                            // of the optical axis from the vertical (0 without attitude)
     bool odometry_lost = false, reinitialised = false;
+    // Which odometry this step used (static strings): "given" (the caller's), "none" (none given,
+    // visual odometry off), or with LocalizerConfig::visual_odometry the frame's: "visual:start",
+    // "visual:features", "visual:phase", "visual:lost", "visual:no-frame" (filter::VisualOdometryTrack).
+    const char* odometry_source = "none";
     filter::LockReport lock;                        // the lock monitor's evidence and verdict
     double score_ms = 0, step_ms = 0;               // scoring calls / the whole step, wall time
 };
@@ -146,6 +158,8 @@ private:
     void add_uncertainty(const filter::Estimate& f, double time_s, Estimate& e);
     void check_on_map(double x, double y, double radius_m, const char* what) const;  // throws naming `what` and the map's size
     void check_observation(const Observation& o) const;
+    // The frame's visual odometry as this step's input (LocalizerConfig::visual_odometry); returns the source label.
+    const char* visual_odometry(const Observation& o, filter::FilterInput& in);
 
     LocalizerConfig config_;
     double mpp_;
@@ -156,6 +170,8 @@ private:
     bool started_ = false;
     bool heading_known_ = false;  // a heading was given (start or step): compass mode may score frames
     Estimate previous_;  // for the velocity (time_s NaN: none)
+    struct VisualOdometryState;
+    std::unique_ptr<VisualOdometryState> visual_;  // with config.visual_odometry
 };
 
 }  // namespace trn::localize

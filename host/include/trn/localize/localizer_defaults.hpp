@@ -26,6 +26,8 @@ inline constexpr double kCompasslessYawSdDeg = 10;
 // The backend a front end makes when none is named: the first usable of GPU OpenCL, GPU Vulkan, cpu,
 // other devices (Registry::create_fastest). Estimates agree across backends to ~10 digits.
 inline constexpr const char* kDefaultBackend = "fastest";
+// Visual odometry online (LocalizerConfig::visual_odometry): off; the caller gives the odometry.
+inline constexpr bool kDefaultVisualOdometry = false;
 // Filter steps per second of a recorded flight (LocalizationSpec::rate_hz).
 inline constexpr double kDefaultRateHz = 5;
 
