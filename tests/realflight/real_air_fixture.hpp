@@ -80,4 +80,12 @@ protected:
     std::string dir_;
 };
 
+// A number as the CLI's CSV prints it (10 significant digits), to compare a library run with it.
+inline std::string ten_digits(double v) {
+    std::ostringstream os;
+    os.precision(10);
+    os << v;
+    return os.str();
+}
+
 }  // namespace trn::test

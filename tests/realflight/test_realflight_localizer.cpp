@@ -19,13 +19,6 @@ namespace {
 
 class RealFlightLocalizer : public RealAirFolder, public testing::WithParamInterface<const char*> {};
 
-std::string ten_digits(double v) {
-    std::ostringstream os;
-    os.precision(10);
-    os << v;
-    return os.str();
-}
-
 localize::LocalizerConfig cli_defaults() {  // what `trnkit localize --init-radius-m 50 --seed 1` sets
     localize::LocalizerConfig c;
     c.filter.init_radius_m = 50;

@@ -18,13 +18,6 @@ namespace {
 
 class RealFlightVisualOdometryOnline : public RealAirFolder, public testing::WithParamInterface<const char*> {};
 
-std::string ten_digits(double v) {
-    std::ostringstream os;
-    os.precision(10);
-    os << v;
-    return os.str();
-}
-
 TEST_P(RealFlightVisualOdometryOnline, LocalizerComputesTheCliVisualOdometry) {
     const bool compass = std::string(GetParam()) == "compass";
     localize::AirInputOptions io;
