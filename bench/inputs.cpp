@@ -15,14 +15,19 @@
 #include "trn/io/image_io.hpp"
 
 namespace trn::bench {
+
+std::filesystem::path shared_data_path(const std::filesystem::path& relative) {
+    const char* dir = std::getenv("TRN_SHARED_DATA");
+    return dir && *dir ? std::filesystem::path(dir) / relative : std::filesystem::path();
+}
+
 namespace {
 
 // The tests' texture (blurred noise with hard edges, like aerial imagery), with more edges.
 cv::Mat synthetic_map(int w, int h) { return test::textured_mat(w, h, 20240601, 40, 4); }
 
 MapInput load_map() {
-    if (const char* dir = std::getenv("TRN_SHARED_DATA"); dir && *dir) {
-        const std::filesystem::path path = std::filesystem::path(dir) / "orthophoto.png";
+    if (const std::filesystem::path path = shared_data_path("orthophoto.png"); !path.empty()) {
         if (std::filesystem::exists(path)) {
             const GrayImage img = load_gray(path.string());
             cv::Mat m(img.height, img.width, CV_8UC1, const_cast<std::uint8_t*>(img.pixels.data()));
@@ -100,10 +105,9 @@ const MaskedMapInput* masked_map(const std::string& name, const FrameSize& templ
     const std::string key = name + "/" + templ.text();
     if (auto it = loaded.find(key); it != loaded.end()) return it->second.get();
     std::unique_ptr<MaskedMapInput>& slot = loaded[key];
-    const char* dir = std::getenv("TRN_SHARED_DATA");
     for (const Flight& f : flights) {
-        if (name != f.name || !dir || !*dir) continue;
-        const std::filesystem::path map_path = std::filesystem::path(dir) / f.map, frame_path = std::filesystem::path(dir) / f.frame;
+        const std::filesystem::path map_path = shared_data_path(f.map), frame_path = shared_data_path(f.frame);
+        if (name != f.name || map_path.empty()) continue;
         if (!std::filesystem::exists(map_path) || !std::filesystem::exists(frame_path)) break;
         const GrayImage grey = load_gray(map_path.string()), valid = load_validity(map_path.string()), frame = load_gray(frame_path.string());
         if (valid.width != grey.width) throw Error("bench: " + map_path.string() + " has no alpha (no-data)");

@@ -3,6 +3,7 @@
 // it, else a textured synthetic map), templates cut from it, particle poses around the true pose,
 // and Sobel frames (one hot frame per size, or a rotating working set larger than the cache).
 #include <cstdint>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,10 @@
 #include "trn/scoring.hpp"
 
 namespace trn::bench {
+
+// `relative` under $TRN_SHARED_DATA (the project's real data), or an empty path when the variable
+// is unset or empty: the one place the benchmarks read it.
+std::filesystem::path shared_data_path(const std::filesystem::path& relative);
 
 struct MapInput {
     cv::Mat pixels;      // CV_8UC1, continuous

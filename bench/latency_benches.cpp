@@ -33,6 +33,7 @@
 #include <vector>
 
 #include "devices.hpp"
+#include "inputs.hpp"
 #include "register.hpp"
 #include "timing.hpp"
 #include "trn/io/mavlink_stream.hpp"
@@ -76,10 +77,8 @@ private:
 
 const RecordedFlight* recorded_flight() {
     static const std::unique_ptr<RecordedFlight> flight = []() -> std::unique_ptr<RecordedFlight> {
-        const char* dir = std::getenv("TRN_SHARED_DATA");
-        if (!dir || !*dir) return nullptr;
-        const std::filesystem::path folder = std::filesystem::path(dir) / "realflight3" / "air";
-        if (!std::filesystem::exists(folder / "metadata.csv")) return nullptr;
+        const std::filesystem::path folder = shared_data_path("realflight3/air");
+        if (folder.empty() || !std::filesystem::exists(folder / "metadata.csv")) return nullptr;
         auto f = std::make_unique<RecordedFlight>();
         f->name = "realflight3", f->folder = folder.string();
         localize::AirInputOptions o;
@@ -98,16 +97,12 @@ const RecordedFlight* recorded_flight() {
     return flight.get();
 }
 
-// `trnkit localize`'s configuration with no option given (apps/trnkit/cmd_localize.cpp), on this flight.
+// `trnkit localize`'s configuration with no option given, on this flight: the defaults' one home
+// (localizer_defaults.hpp; tests/python/test_defaults.py holds the CLI to it) and the flight's map and camera.
 localize::LocalizerConfig cli_default_config(const RecordedFlight& f) {
     localize::LocalizerConfig c = localize::localizer_profile(filter::Profile::Ours);
-    c.filter.fixed_particles = 1000, c.filter.min_particles = 100, c.filter.max_particles = 2000;
-    c.filter.init_radius_m = localize::kHandoverInitRadiusM, c.filter.reinit_radius_m = 300;
-    c.filter.init_heading_sd_deg = NAN;
-    c.filter.seed = 1;
     c.filter.metres_per_pixel = f.inputs.map.metres_per_pixel;
-    c.scoring.template_width = 160;
-    c.camera_hfov_deg = f.inputs.camera.hfov_deg, c.max_tilt_deg = filter::kDefaultMaxTiltDeg;
+    c.camera_hfov_deg = f.inputs.camera.hfov_deg;
     return c;
 }
 
