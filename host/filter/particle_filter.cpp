@@ -143,15 +143,19 @@ void ParticleFilter::scatter_yaw_state(double x, double y, double yaw, double ya
     scatter(x, y, yaw, sd_deg <= 90, radius_m, count, first, sd_deg);
 }
 
+std::size_t ParticleFilter::initial_count() const {
+    return config_.initial_particles > 0                  ? config_.initial_particles
+           : config_.sampling == SamplingMethod::Kld ? config_.max_particles
+                                                     : config_.fixed_particles;
+}
+
 void ParticleFilter::initialise(double x, double y, double heading_rad) {
     if (!std::isfinite(x) || !std::isfinite(y)) throw Error("ParticleFilter::initialise: position must be finite");
-    const std::size_t n = config_.initial_particles > 0                  ? config_.initial_particles
-                          : config_.sampling == SamplingMethod::Kld ? config_.max_particles
-                                                                    : config_.fixed_particles;
+    const std::size_t n = initial_count();
     scatter(x, y, heading_rad, std::isfinite(heading_rad), config_.init_radius_m, n, 0, config_.init_heading_sd_deg);
     last_east_ = last_north_ = 0;
     last_dt_s_ = NAN;
-    lost_run_ = 0, lost_span_ = 0;
+    lost_span_ = 0;
     last_heading_ = heading_rad;
     lock_.reset(x, y, config_.init_radius_m);
     initialised_ = true;
@@ -162,9 +166,7 @@ void ParticleFilter::reanchor(double x, double y, double radius_m, double headin
     if (!std::isfinite(x) || !std::isfinite(y)) throw Error("re-anchor: the position must be finite map pixels");
     if (!(radius_m > 0) || !std::isfinite(radius_m))
         throw Error("re-anchor: radius_m must be > 0 metres (how far the true position may be from the fix), got " + std::to_string(radius_m));
-    const std::size_t n = config_.initial_particles > 0                  ? config_.initial_particles
-                          : config_.sampling == SamplingMethod::Kld ? config_.max_particles
-                                                                    : config_.fixed_particles;
+    const std::size_t n = initial_count();
     if (yaw_state_ && std::isnan(heading_rad) && initialised_)
         scatter_yaw_state(x, y, estimate_.yaw, estimate_.yaw_sd, radius_m, n, 0);
     else
@@ -178,7 +180,6 @@ void ParticleFilter::reanchor(double x, double y, double radius_m, double headin
 StepMotion ParticleFilter::motion_from(const FilterInput& in, bool& lost) {
     double east = in.odometry_east_m, north = in.odometry_north_m;
     lost = !std::isfinite(east) || !std::isfinite(north);
-    lost_run_ = lost ? lost_run_ + 1 : 0;
     steps_since_lost_ = lost ? 0 : steps_since_lost_ + 1;
     const bool ours_lost = lost && config_.update.lost_body_velocity;
     // With frame times, a held step is the last good step's velocity over this interval (ours).

@@ -247,6 +247,7 @@ private:
     void score_near_probes(const FilterInput& in, double yaw, double& score_ms);
     double uniform();
     double normal();
+    std::size_t initial_count() const;  // size of an initial (or re-anchored) set
 
     ParticleScorer& scorer_;
     FilterConfig config_;
@@ -259,8 +260,8 @@ private:
     FilterCounters counters_;
     LockMonitor lock_;
     double last_east_ = 0, last_north_ = 0, last_heading_ = NAN;
-    std::size_t lost_run_ = 0;  // consecutive steps with lost odometry
-    double lost_span_ = 0;      // the same in units of the last good step's interval (= lost_run_ without frame times)
+    double lost_span_ = 0;      // consecutive steps with lost odometry, in units of the last good step's interval
+                                // (without frame times: the count of lost steps)
     double last_dt_s_ = NAN;    // interval of the last good odometry step (NaN: unknown)
     std::size_t steps_since_lost_ = SIZE_MAX / 2;  // steps since the odometry was last lost
     bool yaw_state_ = false;  // config_.heading == HeadingMode::None
