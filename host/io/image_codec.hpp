@@ -16,9 +16,10 @@ namespace trn::io::detail {
 // byte), as cv::imread(path, IMREAD_GRAYSCALE) does. The size the header states is already checked.
 GrayImage decode_gray(const std::string& path);
 
-// The validity of load_validity (image_io.hpp): 255 valid, 0 where alpha is 0 or every colour
+// The validity of load_validity (image_io.hpp) for a file that is not PNG (PNG masks are streamed by
+// decode_png_validity, png_reader.hpp, in every build): 255 valid, 0 where alpha is 0 or every colour
 // channel equals *nodata; empty when the file has no alpha and nodata is not given.
-GrayImage decode_validity(const std::string& path, std::optional<int> nodata, int transparent_grey);
+GrayImage decode_validity(const std::string& path, std::optional<int> nodata);
 
 // Encodes in the format of the extension (".png", ...) into memory.
 std::vector<std::uint8_t> encode_gray(const std::string& path, const std::string& extension, GrayView image);

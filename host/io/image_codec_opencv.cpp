@@ -40,18 +40,14 @@ cv::Mat high_bytes(const cv::Mat& m) {
 }
 }  // namespace
 
-GrayImage decode_validity(const std::string& path, std::optional<int> nodata, int transparent_grey) {
+GrayImage decode_validity(const std::string& path, std::optional<int> nodata) {
     cv::Mat m = read(path, cv::IMREAD_UNCHANGED);
-    // A grey PNG's transparency (tRNS: one grey level), which OpenCV does not turn into alpha: the
-    // pixels of that level at the file's own depth.
-    cv::Mat transparent;
-    if (transparent_grey >= 0 && m.channels() == 1) transparent = m == transparent_grey;
     if (m.depth() == CV_16U) m = high_bytes(m);
     if (m.depth() != CV_8U) throw Error(path + ": no-data needs 8- or 16-bit pixels");
     const int channels = m.channels();
     const bool alpha = channels == 2 || channels == 4;
     const int colours = alpha ? channels - 1 : channels;
-    if (!alpha && !nodata && transparent.empty()) return {};
+    if (!alpha && !nodata) return {};
     GrayImage valid{m.cols, m.rows, std::vector<std::uint8_t>(std::size_t(m.cols) * m.rows, 255)};
     for (int y = 0; y < m.rows; ++y) {
         const std::uint8_t* p = m.ptr<std::uint8_t>(y);
@@ -62,7 +58,7 @@ GrayImage decode_validity(const std::string& path, std::optional<int> nodata, in
                 no_data = true;
                 for (int c = 0; c < colours; ++c) no_data = no_data && p[c] == *nodata;
             }
-            if (no_data || (!transparent.empty() && transparent.at<std::uint8_t>(y, x))) out[x] = 0;
+            if (no_data) out[x] = 0;
         }
     }
     return valid;

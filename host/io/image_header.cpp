@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <string_view>
 
 #include "trn/error.hpp"
 #include "trn/io/input_file.hpp"
@@ -28,15 +29,17 @@ bool read_at(std::ifstream& f, std::uint64_t offset, unsigned char* out, std::si
 }
 
 // PNG: signature, then the IHDR chunk: length, "IHDR", width, height (big-endian), bit depth,
-// colour type; then the chunks up to the first IDAT, for a tRNS (transparency) chunk.
+// colour type, compression, filter, interlace; then the chunks up to the first IDAT, for a tRNS
+// (transparency) chunk.
 std::optional<ImageSize> png_size(std::ifstream& f, std::uint64_t file_bytes) {
-    unsigned char h[26];
+    unsigned char h[29];
     if (!read_at(f, 0, h, sizeof h) || std::string(reinterpret_cast<char*>(h + 12), 4) != "IHDR") return std::nullopt;
     ImageSize size{be32(h + 16), be32(h + 20), 2, 0, "PNG"};
     const int colour = h[25];
     size.bits_per_sample = h[24];
     size.channels = colour == 0 ? 1 : colour == 4 ? 2 : colour == 6 ? 4 : 3;  // grey, grey+alpha, RGBA; RGB and palette: 3
     size.alpha_possible = colour == 4 || colour == 6;
+    size.interlaced = h[28] == 1;
     std::uint64_t at = 33;
     for (int chunks = 0; chunks < 10000 && at + 8 <= file_bytes; ++chunks) {
         unsigned char c[10];
@@ -47,10 +50,6 @@ std::optional<ImageSize> png_size(std::ifstream& f, std::uint64_t file_bytes) {
         if (type == "tRNS") {
             size.alpha_possible = true;
             if (colour == 3) size.channels = 4;  // a palette with transparency decodes as BGRA
-            if (colour == 0 && length >= 2 && read_at(f, at + 8, c, 2)) {
-                const int value = int(be16(c)), depth = size.bits_per_sample;  // 1, 2, 4 bits are decoded scaled to 8
-                size.transparent_grey = depth < 8 && depth > 0 ? value * 255 / ((1 << depth) - 1) : value;
-            }
         }
         at += 12 + std::uint64_t(length);
     }
@@ -341,6 +340,7 @@ std::optional<ImageSize> read_image_size(const std::string& path) {
 
 double validity_decode_bytes(const ImageSize& s) {
     const double px = double(s.width) * double(s.height);
+    if (std::string_view(s.format) == "PNG") return px * (s.interlaced ? 5 : 1) + 4 * double(s.width);  // png_validity.cpp
     const double sample_bytes = s.bits_per_sample > 8 ? 2 : 1;
     return px * (s.channels * sample_bytes + (s.bits_per_sample > 8 ? s.channels : 0) + 1);
 }

@@ -1,9 +1,11 @@
 #include "trn/io/image_io.hpp"
 
 #include <filesystem>
+#include <string_view>
 #include <opencv2/core.hpp>
 
 #include "image_codec.hpp"
+#include "png_reader.hpp"
 
 #include "trn/error.hpp"
 #include "trn/io/atomic_file.hpp"
@@ -29,15 +31,17 @@ GrayImage load_validity(const std::string& path, std::optional<int> nodata) {
     const ImageSize size = check_image_file(path);
     // No alpha, no transparency and no value named: every pixel is valid; the map is not decoded again.
     if (!nodata && !size.alpha_possible) return {};
-    // The mask is read at the file's full depth (a 16-bit RGBA PNG: 8 B/px, their high bytes and the
-    // mask): the per-image budget holds for it too, before any decoder runs.
+    // The mask's decode (PNG: streamed, the mask and a row; other formats at the file's full depth,
+    // a 16-bit RGBA TIFF 8 B/px, their high bytes and the mask): the per-image budget holds for it
+    // too, before any decoder runs.
     const double bytes = validity_decode_bytes(size);
     if (bytes > kMaxImageDecodeBytes)
         throw Error(io::quote_input(path, 512) + ": image " + std::to_string(size.width) + "x" + std::to_string(size.height) + " (" + size.format +
                     ", " + std::to_string(size.channels) + " channels of " + std::to_string(size.bits_per_sample) + " bits) needs ~" +
                     limits::format_bytes(bytes) + " to read its no-data mask (limit " + limits::format_bytes(kMaxImageDecodeBytes) + " per image)");
     limits::check_memory(path + ": no-data mask", bytes);
-    GrayImage valid = io::detail::decode_validity(path, nodata, size.transparent_grey);
+    GrayImage valid = std::string_view(size.format) == "PNG" ? io::detail::decode_png_validity(path, nodata, "")
+                                                             : io::detail::decode_validity(path, nodata);
     if (valid.width > 0) limits::check_image(path + ": image", valid.width, valid.height, limits::kMaxMapPixels, limits::kLoadBytesPerPixel);
     return valid;
 }

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include <opencv2/imgcodecs.hpp>
+#include <png.h>
 
 #include "trn/error.hpp"
 #include "trn/io/image_io.hpp"
@@ -58,7 +59,26 @@ inline void expect_validity_as_reference(const std::string& path, std::optional<
     EXPECT_EQ(differing, 0);
 }
 
-// PNGs of every colour type and depth (alpha with holes, values equal to the nodata levels) written
+// `m` (8- or 16-bit, 1 or 4 channels, OpenCV's BGRA order) as an Adam7-interlaced PNG, which
+// cv::imwrite cannot write: the mask reader's interlaced path.
+inline void write_interlaced_png(const std::string& path, const cv::Mat& m) {
+    std::FILE* f = std::fopen(path.c_str(), "wb");
+    ASSERT_NE(f, nullptr) << path;
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+    png_infop info = png_create_info_struct(png);
+    std::vector<png_bytep> rows(m.rows);
+    for (int y = 0; y < m.rows; ++y) rows[y] = const_cast<png_bytep>(m.ptr<png_byte>(y));
+    png_init_io(png, f);
+    png_set_IHDR(png, info, m.cols, m.rows, m.depth() == CV_16U ? 16 : 8, m.channels() == 4 ? PNG_COLOR_TYPE_RGBA : PNG_COLOR_TYPE_GRAY,
+                 PNG_INTERLACE_ADAM7, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    png_set_rows(png, info, rows.data());
+    png_write_png(png, info, PNG_TRANSFORM_BGR | (m.depth() == CV_16U ? PNG_TRANSFORM_SWAP_ENDIAN : 0), nullptr);
+    png_destroy_write_struct(&png, &info);
+    ASSERT_EQ(std::fclose(f), 0) << path;
+}
+
+// PNGs of every colour type and depth (alpha with holes, values equal to the nodata levels; grey and
+// RGBA interlaced too) written
 // into `dir`, and the real maps of TRN_SHARED_DATA when present, each checked with and without nodata.
 inline void check_validity_cases(const std::string& dir) {
     const std::vector<std::pair<const char*, int>> kinds = {{"v_grey8", CV_8UC1},  {"v_grey16", CV_16UC1}, {"v_rgb8", CV_8UC3},
@@ -75,9 +95,13 @@ inline void check_validity_cases(const std::string& dir) {
         const std::string path = dir + "/" + name + ".png";
         ASSERT_TRUE(cv::imwrite(path, m));
         files.push_back(path);
+        if (m.channels() == 1 || m.channels() == 4) {
+            write_interlaced_png(dir + "/" + name + "_adam7.png", m);
+            files.push_back(dir + "/" + name + "_adam7.png");
+        }
     }
     if (const char* data = std::getenv("TRN_SHARED_DATA"))
-        for (const char* f : {"/realflight2/orthomosaic.png", "/orthophoto.png"})
+        for (const char* f : {"/realflight2/orthomosaic.png", "/realflight3/map.png", "/orthophoto.png"})
             if (std::filesystem::exists(std::string(data) + f)) files.push_back(std::string(data) + f);
     for (const std::string& f : files)
         for (const std::optional<int> nodata : {std::optional<int>(), std::optional<int>(0), std::optional<int>(255), std::optional<int>(77)})

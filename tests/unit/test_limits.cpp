@@ -249,5 +249,29 @@ TEST_F(LimitFiles, MemoryEstimatesAreRightWithin25Percent) {
     }
 }
 
+// A PNG map's no-data mask is streamed (issue 45): the mask and one row, whatever the file's depth.
+// A 16-bit RGBA map took 13 B/px before (the full-depth decode, its high bytes, the mask).
+TEST_F(LimitFiles, PngMaskMemoryIsTheMaskAlone) {
+    const int w = 4096, h = 2048;
+    const double px = double(w) * h;
+    const double slack = test::kUnderAddressSanitizer ? test::kAddressSanitizerRssSlack : 1.0;
+    {
+        cv::Mat rgba(h, w, CV_16UC4, cv::Scalar(1000, 2000, 3000, 65535));
+        rgba(cv::Rect(0, 0, w / 3, h)).setTo(cv::Scalar::all(0));  // a third no-data
+        ASSERT_TRUE(cv::imwrite(path("rgba16.png"), rgba));
+    }
+    const double estimate = validity_decode_bytes(check_image_file(path("rgba16.png")));
+    GrayImage valid;
+    const auto mask = test::peak_rss_growth([&] { valid = load_validity(path("rgba16.png")); });
+    if (!mask) GTEST_SKIP() << "this kernel cannot reset the peak RSS (/proc/self/clear_refs)";
+    std::cout << "load_validity (16-bit RGBA PNG): " << double(*mask) / px << " B/px measured, " << estimate / px << " estimated\n";
+    ASSERT_EQ(valid.width, w);
+    EXPECT_EQ(valid.pixels[0], 0);
+    EXPECT_EQ(valid.pixels[std::size_t(w) * h - 1], 255);
+    EXPECT_GT(double(*mask), estimate * 0.75);
+    EXPECT_LT(double(*mask), estimate * 1.25 * slack);
+    EXPECT_LT(double(*mask), 1.5 * px * slack) << "the mask is not streamed";
+}
+
 }  // namespace
 }  // namespace trn

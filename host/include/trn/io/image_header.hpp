@@ -21,11 +21,11 @@ struct ImageSize {
     // (PNG, JPEG, TIFF); otherwise the most it may be (4 channels of 16 bits, alpha possible).
     int channels = 4, bits_per_sample = 16;
     bool alpha_possible = true;  // an alpha channel or PNG transparency (tRNS): a mask to read
-    int transparent_grey = -1;   // a grey PNG's tRNS value (at its bit depth); -1: none
+    bool interlaced = false;     // an Adam7 PNG: its mask's decode holds every row at once
 };
 
-// Bytes load_validity's full-depth decode of such an image takes: the decoded pixels, their high
-// bytes when 16-bit, and the mask.
+// Bytes load_validity's decode of such an image takes: a PNG's mask and one 8-bit RGBA row (every
+// row when interlaced); another format's decoded pixels, their high bytes when 16-bit, and the mask.
 double validity_decode_bytes(const ImageSize& size);
 
 // Most bytes decoding one image file may take (2 GiB: a 2^30-pixel 8-bit map at 2 B/px), whatever
