@@ -19,7 +19,7 @@ packages=(
   # Vulkan: loader, lavapipe (CPU device), GLSL -> SPIR-V compiler, validation layer
   libvulkan-dev mesa-vulkan-drivers glslang-tools vulkan-validationlayers vulkan-tools
   # fuzzing (libFuzzer via clang), plots, and the benchmark report script
-  clang libclang-rt-14-dev gnuplot-nox python3
+  clang libclang-rt-dev gnuplot-nox python3  # libclang-rt-dev: the default clang's runtime (14 on Debian 12, 19 on 13)
   # the Python module (pybind11 + NumPy) and its pytest tests
   python3-dev python3-numpy python3-pybind11 pybind11-dev python3-pytest
   # `pip install .` / `pip wheel .` of the package without network (setuptools drives CMake; venvs)
