@@ -25,6 +25,13 @@ trixie_check() {
       { tail -5 "$cache/trixie/debootstrap.log" >&2; echo "platform-check: debootstrap failed" >&2; exit 1; }
   fi
   cp /etc/resolv.conf "$root/etc/resolv.conf"
+  # The root trusts the certificate authorities the host's administrator added (a proxy that
+  # inspects TLS has its own: npm in install-deps.sh fails without it); Debian's own come with
+  # ca-certificates, which install-deps.sh installs anyway.
+  if compgen -G '/usr/local/share/ca-certificates/*.crt' >/dev/null; then
+    mkdir -p "$root/usr/local/share/ca-certificates"
+    cp /usr/local/share/ca-certificates/*.crt "$root/usr/local/share/ca-certificates/"
+  fi
   trap chroot_unmount EXIT
   local bind=()
   [[ -d $repo/../shared ]] && bind=("ro:$repo/../shared")
@@ -36,10 +43,15 @@ trixie_check() {
   git clone -q --no-hardlinks "$repo" "$clone"
   local commit
   commit=$(git -C "$repo" rev-parse --short HEAD)
-  # The root has nothing but apt: bash, git and the rest come from install-deps.sh (`./run test`).
+  # The root has nothing but apt: bash, git and the rest come from install-deps.sh (`./run test`);
+  # ca-certificates first, so the host's authorities above are in its bundle before npm runs.
+  local in_root=(chroot "$root" /usr/bin/env -i PATH=/usr/sbin:/usr/bin:/sbin:/bin HOME=/root LANG=C.UTF-8 JOBS="$jobs")
+  # shellcheck disable=SC2016  # expanded by dpkg-query in the root
+  "${in_root[@]}" /bin/bash -c 'dpkg-query -W -f="\${Status}" ca-certificates 2>/dev/null | grep -q "ok installed" ||
+    { apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends ca-certificates; }; update-ca-certificates' \
+    > "$cache/trixie/ca.log" 2>&1 || { cat "$cache/trixie/ca.log" >&2; exit 1; }
   set +e
-  chroot "$root" /usr/bin/env -i PATH=/usr/sbin:/usr/bin:/sbin:/bin HOME=/root LANG=C.UTF-8 JOBS="$jobs" \
-    /bin/bash -c "cd '${clone#"$root"}' && ./run test" > "$log" 2>&1
+  "${in_root[@]}" /bin/bash -c "cd '${clone#"$root"}' && ./run test" > "$log" 2>&1
   local rc=$?
   set -e
   local tests versions

@@ -465,9 +465,13 @@ PowerTrace parse_ina219_csv(std::string_view input, const std::string& name, con
         std::set<int> used = {time.index, date_col, shunt.index, bus.index, current.index, energy.index};
         for (const auto& p : powers) used.insert(p.index);
         std::set<std::string> named;
-        if (const auto sel = o.text("series"); sel && *sel != "all")
-            for (auto clause : text::split(sel->rfind("sum:", 0) == 0 ? sel->substr(4) : *sel, ','))
+        if (const auto sel = o.text("series"); sel && *sel != "all") {
+            // Named, not a temporary inside the range expression: split's views point into it, and
+            // before C++23 a temporary there dies before the loop body runs (ASan: use after free).
+            const std::string clauses = sel->rfind("sum:", 0) == 0 ? sel->substr(4) : *sel;
+            for (auto clause : text::split(clauses, ','))
                 named.insert(text::lower(text::trim(clause.substr(0, clause.find('=')))));
+        }
         for (std::size_t i = 0; i < ncols; ++i) {
             if (used.count(static_cast<int>(i))) continue;
             std::vector<std::string> values;
