@@ -6,6 +6,8 @@
 #include <cstdlib>
 #include <string>
 
+#include "../common/peak_rss.hpp"  // kUnderAddressSanitizer
+
 namespace trn::test {
 
 struct CliResult {
@@ -31,6 +33,15 @@ inline CliResult run_shell(const std::string& line) {
 inline std::string trnkit_exe() {
     const char* over = std::getenv("TRNKIT_UNDER_TEST");
     return over && *over ? over : TRNKIT_EXE;
+}
+
+// A shell prefix that runs what follows under an address-space limit of `kbytes` and a time limit.
+// Under AddressSanitizer (whose shadow reserves terabytes of address space at start-up, so any
+// ulimit -v aborts the run before main) the memory limit is left out and 5x the time is allowed:
+// what the test checks (a refusal, an exit code) still runs. Every test that limits memory uses it.
+inline std::string limited(long kbytes, int seconds) {
+    if (kUnderAddressSanitizer) return "timeout " + std::to_string(5 * seconds) + " ";
+    return "ulimit -v " + std::to_string(kbytes) + "; timeout " + std::to_string(seconds) + " ";
 }
 
 inline CliResult run_trnkit(const std::string& args) { return run_shell(trnkit_exe() + " " + args + " 2>&1"); }

@@ -180,8 +180,9 @@ TEST_F(Cli, OversizedInputsFailAtOnceWithTheLimit) {
         const double largest = largest_child_rss();
         EXPECT_LT(largest, idle + allowance) << c.args << ": largest child so far " << largest / 1e6 << " MB, --version "
                                              << idle / 1e6 << " MB";
-        if (!trn::test::kUnderAddressSanitizer)
+        if (!trn::test::kUnderAddressSanitizer) {
             EXPECT_LT(largest, 150.0 * (1 << 20)) << c.args << ": largest child so far " << largest / 1e6 << " MB";
+        }
     }
     std::printf("largest child: %.1f MB peak RSS\n", largest_child_rss() / 1e6);    // Particle counts beyond trn::limits::kMaxParticles stop at the option parser (CLI11's two-line
     // message), before the backend is even created.

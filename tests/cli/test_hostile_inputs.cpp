@@ -29,12 +29,10 @@ namespace {
 
 using Result = trn::test::CliResult;
 
-// Runs `prefix trnkit args` in a shell with a 20 s timeout and a 3 GB address-space limit. Under
-// AddressSanitizer (whose shadow reserves terabytes of address space at start-up, so any ulimit -v
-// aborts every run) the limit is left out and the time allowed is 5x: the refusals stay checked.
+// Runs `prefix trnkit args` in a shell with a 20 s timeout and a 3 GB address-space limit (under
+// AddressSanitizer: no memory limit, 100 s; trn::test::limited).
 Result run(const std::string& args, const std::string& prefix = "") {
-    const std::string limits = trn::test::kUnderAddressSanitizer ? "timeout 100 " : "ulimit -v 3000000; timeout 20 ";
-    return trn::test::run_shell(limits + prefix + " " + trn::test::trnkit_exe() + " " + args + " 2>&1");
+    return trn::test::run_shell(trn::test::limited(3000000, 20) + prefix + " " + trn::test::trnkit_exe() + " " + args + " 2>&1");
 }
 
 std::string quoted(const std::string& s) { return "'" + s + "'"; }

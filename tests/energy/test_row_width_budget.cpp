@@ -80,7 +80,7 @@ TEST(RowWidthBudget, A240MbHeaderOf120MColumnsIsRefusedByTheCli) {
         header.back() = '\n';
         std::ofstream(log, std::ios::binary) << header << "0\n";
     }
-    const auto r = trn::test::run_shell("ulimit -v 3000000; timeout 60 " + trn::test::trnkit_exe() + " energy inspect " + log.string() + " 2>&1");
+    const auto r = trn::test::run_shell(trn::test::limited(3000000, 60) + trn::test::trnkit_exe() + " energy inspect " + log.string() + " 2>&1");
     fs::remove(log);
     EXPECT_EQ(r.code, 1) << r.output.substr(0, 2000);
     EXPECT_NE(r.output.find(":1: a row of 120000000 fields, more than the 65536 a log row may have"), std::string::npos) << r.output.substr(0, 2000);
