@@ -19,6 +19,8 @@ constexpr double kLostStraightTurnRad = 30 * kDeg;
 // Odometry lost within this many steps supports no position: the map is then the better prior,
 // and a particle without a valid score gets weight 0 again (UpdateModel::unknown_neutral).
 constexpr std::size_t kDoubtSteps = 20;
+constexpr double kDoubtWholeShare = 0.9;  // of a whole patch's samples, while in doubt
+constexpr double kSettledSpreadM = 10;    // the cloud's spread (m) that ends the start's doubt
 }  // namespace
 
 SamplingMethod parse_sampling_method(std::string_view text) {
@@ -156,6 +158,7 @@ void ParticleFilter::initialise(double x, double y, double heading_rad) {
     last_east_ = last_north_ = 0;
     last_dt_s_ = NAN;
     lost_span_ = 0;
+    steps_since_start_ = 0;
     last_heading_ = heading_rad;
     lock_.reset(x, y, config_.init_radius_m);
     initialised_ = true;
@@ -173,6 +176,7 @@ void ParticleFilter::reanchor(double x, double y, double radius_m, double headin
         scatter(x, y, heading_rad, std::isfinite(heading_rad), radius_m, n, 0, config_.init_heading_sd_deg);
     if (std::isfinite(heading_rad)) last_heading_ = heading_rad;
     lock_.reset(x, y, radius_m);
+    steps_since_start_ = 0;
     initialised_ = true;
     update_estimate();
 }
@@ -181,6 +185,7 @@ StepMotion ParticleFilter::motion_from(const FilterInput& in, bool& lost) {
     double east = in.odometry_east_m, north = in.odometry_north_m;
     lost = !std::isfinite(east) || !std::isfinite(north);
     steps_since_lost_ = lost ? 0 : steps_since_lost_ + 1;
+    ++steps_since_start_;
     const bool ours_lost = lost && config_.update.lost_body_velocity;
     // With frame times, a held step is the last good step's velocity over this interval (ours).
     const bool timed = std::isfinite(in.dt_s) && in.dt_s >= 0;
@@ -346,7 +351,22 @@ std::size_t ParticleFilter::measure(const FilterInput& in, double& score_ms, dou
     if (!probe_scores_.empty()) score_near_probes(in, probe_yaw, score_ms);
     frame_weight = 1;
     const UpdateModel& u = config_.update;
-    if (u.unknown_neutral && steps_since_lost_ > kDoubtSteps) {
+    // Without a compass the odometry's direction on the map is each particle's own guess until the
+    // yaw has settled: from a start (or re-anchor) the odometry supports no position until the cloud
+    // has gathered on one place (its spread, last step). With a compass the start circle is one.
+    if (steps_since_start_ <= kDoubtSteps && (!yaw_state_ || estimate_.spread_px * config_.metres_per_pixel < kSettledSpreadM))
+        steps_since_start_ = SIZE_MAX / 2;
+    const bool doubt = steps_since_lost_ <= kDoubtSteps || steps_since_start_ <= kDoubtSteps;
+    if (u.unknown_neutral && doubt) {
+        // No position is supported yet (a compass-less start) or any more (lost odometry): the map
+        // is the prior. A particle off it learns nothing and gets weight 0 (above), and one whose
+        // patch is partly off it counts only with nearly a whole patch of evidence.
+        std::uint32_t whole = 0;
+        for (std::size_t i = 0; i < particles_.size(); ++i) whole = std::max(whole, scores_[i].valid_samples);
+        for (std::size_t i = 0; i < particles_.size(); ++i)
+            if (scores_[i].valid() && scores_[i].valid_samples < kDoubtWholeShare * whole) particles_[i].weight = 0;
+    }
+    if (u.unknown_neutral && !doubt) {
         if (invalid == particles_.size()) {  // nothing under any particle: the frame tells nothing
             for (Particle& p : particles_) p.weight = 1;
             frame_weight = 0;

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <algorithm>
+#include <array>
 #include <functional>
 
 #include "trn/error.hpp"
@@ -134,6 +135,50 @@ TEST(UpdateModel, ADistinctFrameIsBelievedInPartAndAFlatOneWhole) {
     ParticleFilter flat(scorer, config(true));
     flat.initialise(500, 500, 0);
     EXPECT_EQ(flat.step(frame_input()).frame_weight, 1.0);
+}
+
+// Without a compass the odometry's direction is each particle's own guess until the yaw settles:
+// from the start the map is the prior (as after lost odometry). A particle off the map weighs 0 and
+// one whose patch is partly off it (below 0.9 of a whole patch) too, until the cloud has gathered
+// within 10 m; with a compass, or once settled, "unknown is not impossible" as above.
+TEST(UpdateModel, ACompasslessStartTakesTheMapAsThePriorUntilTheCloudSettles) {
+    // West of x = 490 no-data; 490..510 the patch is partly on the map (60 of 100 samples); east of
+    // it whole (100). Every scored place has the same NCC: only the rule decides the weights.
+    RuleScorer scorer;
+    scorer.rule = [](const Pose& p) {
+        if (p.x < 490) return invalid();
+        ParticleScore s = valid(0.3f);
+        if (p.x < 510) s.valid_samples = 60;
+        return s;
+    };
+    const auto weights = [&](HeadingMode heading, double x, double radius_m) {
+        FilterConfig c = config(true);
+        c.heading = heading;
+        c.init_radius_m = radius_m;
+        c.update.min_ess_fraction = 0;
+        ParticleFilter pf(scorer, c);
+        pf.initialise(x, 500, heading == HeadingMode::None ? NAN : 0.0);
+        FilterInput in = frame_input();
+        if (heading == HeadingMode::None) in.heading_rad = NAN;
+        pf.step(in);
+        double off = 0, partial = 0, whole = 0;  // the largest weight of each kind
+        for (const Particle& p : pf.particles()) {
+            const float x = static_cast<float>(p.x);  // as the scorer saw it
+            double& kind = x < 490 ? off : x < 510 ? partial : whole;
+            kind = std::max(kind, p.weight);
+        }
+        return std::array<double, 3>{off, partial, whole};
+    };
+    const auto start = weights(HeadingMode::None, 500, 50);  // a 50 m circle: spread ~35 m, not settled
+    EXPECT_EQ(start[0], 0.0) << "off the map, from a compass-less start";
+    EXPECT_EQ(start[1], 0.0) << "60 % of a patch, from a compass-less start";
+    EXPECT_GT(start[2], 0.0);
+    const auto compass = weights(HeadingMode::Compass, 500, 50);
+    EXPECT_GT(compass[0], 0.0) << "with a compass the start circle is a supported position";
+    EXPECT_GT(compass[1], 0.0);
+    const auto settled = weights(HeadingMode::None, 490, 6);  // a 6 m circle on the edge: spread ~4 m, settled
+    EXPECT_GT(settled[0], 0.0);
+    EXPECT_GT(settled[1], 0.0);
 }
 
 TEST(UpdateModel, RefusesOutOfRangeSettings) {

@@ -75,9 +75,11 @@ const char* to_string(SamplingMethod method);
 //   - unknown is not impossible: a particle without a valid score learns nothing from the frame and
 //     gets the weight of a poor but possible place, the conversion of the `unknown_quantile` of the
 //     valid particles' NCCs (by default the median: a typical place); a frame on which no particle
-//     is valid leaves the weights equal (no re-initialisation). Not while the odometry has been
-//     lost within the last 20 steps: then dead reckoning supports no position and the map is the
-//     better prior (weight 0 off it, and a redraw within reinit_radius_m when nothing is on it);
+//     is valid leaves the weights equal (no re-initialisation). Not while the odometry supports no
+//     position: lost within the last 20 steps, or, without a compass, from the start until the
+//     cloud has gathered within 10 m (each particle turns the odometry by its own yaw until then).
+//     There the map is the better prior: weight 0 off it, and 0 for a patch below 0.9 of a whole
+//     one's samples (a redraw within reinit_radius_m when nothing is on it);
 //   - a particle is scored when at least `min_valid_fraction` of its samples lie on map data (the
 //     NCC then over those): half a frame over the map is evidence, not "unknown" (the scorer's 0.9
 //     before this model: a frame near no-data left most of the cloud unscored); a partly covered
@@ -264,6 +266,7 @@ private:
                                 // (without frame times: the count of lost steps)
     double last_dt_s_ = NAN;    // interval of the last good odometry step (NaN: unknown)
     std::size_t steps_since_lost_ = SIZE_MAX / 2;  // steps since the odometry was last lost
+    std::size_t steps_since_start_ = SIZE_MAX / 2;  // steps since initialise() or reanchor()
     bool yaw_state_ = false;  // config_.heading == HeadingMode::None
     bool initialised_ = false;
     std::uint64_t rng_;
