@@ -77,7 +77,8 @@ const char* to_string(SamplingMethod method);
 //     valid particles' NCCs (by default the median: a typical place); a frame on which no particle
 //     is valid leaves the weights equal (no re-initialisation). Not while the odometry supports no
 //     position: lost within the last 20 steps, or, without a compass, from the start until the
-//     cloud has gathered within 10 m (each particle turns the odometry by its own yaw until then).
+//     cloud has gathered within 10 m, 20 steps at most (each particle turns the odometry by its
+//     own yaw until then).
 //     There the map is the better prior: weight 0 off it, and 0 for a patch below 0.9 of a whole
 //     one's samples (a redraw within reinit_radius_m when nothing is on it);
 //   - a particle is scored when at least `min_valid_fraction` of its samples lie on map data (the
