@@ -357,28 +357,24 @@ std::size_t ParticleFilter::measure(const FilterInput& in, double& score_ms, dou
     if (steps_since_start_ <= kDoubtSteps && (!yaw_state_ || estimate_.spread_px * config_.metres_per_pixel < kSettledSpreadM))
         steps_since_start_ = SIZE_MAX / 2;
     const bool doubt = steps_since_lost_ <= kDoubtSteps || steps_since_start_ <= kDoubtSteps;
-    if (u.unknown_neutral && doubt) {
-        // No position is supported yet (a compass-less start) or any more (lost odometry): the map
-        // is the prior. A particle off it learns nothing and gets weight 0 (above), and one whose
-        // patch is partly off it counts only with nearly a whole patch of evidence.
-        std::uint32_t whole = 0;
-        for (std::size_t i = 0; i < particles_.size(); ++i) whole = std::max(whole, scores_[i].valid_samples);
-        for (std::size_t i = 0; i < particles_.size(); ++i)
-            if (scores_[i].valid() && scores_[i].valid_samples < kDoubtWholeShare * whole) particles_[i].weight = 0;
-    }
-    if (u.unknown_neutral && !doubt) {
-        if (invalid == particles_.size()) {  // nothing under any particle: the frame tells nothing
-            for (Particle& p : particles_) p.weight = 1;
-            frame_weight = 0;
-            return invalid;
-        }
+    if (u.unknown_neutral) {
         // A whole patch's sample count: the most any particle had on the map (a frame entirely over
         // partial patches takes its best-covered one as whole).
         std::uint32_t whole = 0;
         for (std::size_t i = 0; i < particles_.size(); ++i) whole = std::max(whole, scores_[i].valid_samples);
-        bool partial = invalid > 0;
-        for (std::size_t i = 0; i < particles_.size() && !partial; ++i) partial = scores_[i].valid() && scores_[i].valid_samples < whole;
-        if (partial) {
+        if (doubt) {
+            // No position is supported yet (a compass-less start) or any more (lost odometry): the map
+            // is the prior. A particle off it learns nothing and gets weight 0 (above), and one whose
+            // patch is partly off it counts only with nearly a whole patch of evidence.
+            for (std::size_t i = 0; i < particles_.size(); ++i)
+                if (scores_[i].valid() && scores_[i].valid_samples < kDoubtWholeShare * whole) particles_[i].weight = 0;
+        } else if (invalid == particles_.size()) {  // nothing under any particle: the frame tells nothing
+            for (Particle& p : particles_) p.weight = 1;
+            frame_weight = 0;
+            return invalid;
+        } else if (invalid > 0 || std::any_of(scores_.begin(), scores_.end(), [whole](const ParticleScore& sc) {
+                       return sc.valid() && sc.valid_samples < whole;
+                   })) {  // some particles unknown or partly covered
             valid_ncc_.clear();  // for their quantile
             for (std::size_t i = 0; i < particles_.size(); ++i)
                 if (scores_[i].valid()) valid_ncc_.push_back(scores_[i].ncc);
