@@ -42,7 +42,7 @@ std::optional<ImageSize> png_size(std::ifstream& f, std::uint64_t file_bytes) {
     size.interlaced = h[28] == 1;
     std::uint64_t at = 33;
     for (int chunks = 0; chunks < 10000 && at + 8 <= file_bytes; ++chunks) {
-        unsigned char c[10];
+        unsigned char c[8];
         if (!read_at(f, at, c, 8)) break;
         const std::uint32_t length = be32(c);
         const std::string type(reinterpret_cast<char*>(c + 4), 4);

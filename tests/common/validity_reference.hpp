@@ -78,8 +78,8 @@ inline void write_interlaced_png(const std::string& path, const cv::Mat& m) {
 }
 
 // PNGs of every colour type and depth (alpha with holes, values equal to the nodata levels; grey and
-// RGBA interlaced too) written
-// into `dir`, and the real maps of TRN_SHARED_DATA when present, each checked with and without nodata.
+// RGBA interlaced too) written into `dir`, and the real maps of TRN_SHARED_DATA when present, each
+// checked with and without nodata.
 inline void check_validity_cases(const std::string& dir) {
     const std::vector<std::pair<const char*, int>> kinds = {{"v_grey8", CV_8UC1},  {"v_grey16", CV_16UC1}, {"v_rgb8", CV_8UC3},
                                                             {"v_rgba8", CV_8UC4},  {"v_rgba16", CV_16UC4}};
