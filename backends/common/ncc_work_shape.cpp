@@ -29,6 +29,14 @@ NccWorkShape choose_vulkan_ncc_shape(const NccDeviceLimits& limits) {
     return {wide_group(limits.lanes, limits.max_group_size), 1};
 }
 
+std::size_t vulkan_group_for_samples(std::size_t group, std::size_t samples, std::size_t max_group) {
+    while ((samples + group - 1) / group > kVulkanMaxSamplesPerItem) {
+        if (group * 2 > max_group) return 0;
+        group *= 2;
+    }
+    return group;
+}
+
 NccWorkShape choose_cuda_ncc_shape(const NccDeviceLimits& limits) {
     const std::size_t warp = floor_pow2(std::max<std::size_t>(limits.lanes, 1));
     return {std::max(wide_group(limits.lanes, limits.max_group_size), warp), 1};

@@ -45,6 +45,17 @@ NccWorkShape choose_opencl_ncc_shape(const NccDeviceLimits& limits);
 // does not limit the shape. A power of two, >= 1.
 NccWorkShape choose_vulkan_ncc_shape(const NccDeviceLimits& limits);
 
+// Mesa's llvmpipe (lavapipe) ends an invocation's loops, silently, after 65535 iterations of all
+// its loops together (gallivm's LP_MAX_TGSI_LOOP_ITERATIONS): ncc_score.comp's sample loop takes
+// one iteration per sample an invocation walks, so no invocation may walk more than this many
+// (half the budget: the outer run loop and any loop the compiler does not unroll take the rest).
+inline constexpr std::size_t kVulkanMaxSamplesPerItem = 32768;
+
+// The work-group size that scores a plan of `samples` samples: `group`, doubled while an item
+// would walk more than kVulkanMaxSamplesPerItem samples; 0 when even `max_group` (a power of two)
+// cannot keep within it.
+std::size_t vulkan_group_for_samples(std::size_t group, std::size_t samples, std::size_t max_group);
+
 // CUDA (one particle per block): kNccSubgroupsPerGroup warps, at most kNccMaxGroup and what the
 // kernel allows (registers), a power of two; the kernel's warp-shuffle reduction needs whole warps,
 // so the block is never below one warp (a kernel that allows less is refused by the backend). Its

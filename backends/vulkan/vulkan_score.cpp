@@ -4,6 +4,8 @@
 #include <array>
 #include <cstring>
 
+#include "../common/ncc_work_shape.hpp"
+#include "../common/pow2.hpp"
 #include "trn/impl/particle_sums.hpp"
 #include "vulkan_backend_impl.hpp"
 
@@ -48,6 +50,14 @@ void VulkanBackend::do_score(const MapStorage& storage, const ScoringPlan& plan,
     if (samples > 0xFFFFFFFFu / 8) throw Error("score: the plan has too many samples for " + info_.name);
     if (std::size_t(plan.width) * std::size_t(plan.height) > 0xFFFFFFFFu)
         throw Error("score: a " + std::to_string(plan.width) + "x" + std::to_string(plan.height) + " template is too large for " + info_.name);
+    // Large plans take wider groups, so that no invocation outruns lavapipe's loop budget.
+    // (At most 1024, the largest work_group option, within the kernel's 16 KiB of shared memory.)
+    const std::size_t max_group = floor_pow2(std::min<std::size_t>({lim.maxComputeWorkGroupInvocations, lim.maxComputeWorkGroupSize[0], 1024}));
+    const std::size_t group_size = vulkan_group_for_samples(score_group_size_, samples, max_group);
+    if (group_size == 0)
+        throw Error("score: the plan's " + std::to_string(samples) + " samples exceed the " +
+                    std::to_string(kVulkanMaxSamplesPerItem * max_group) + " one work-group of " + info_.name +
+                    " may walk; sample the template sparser");
 
     const auto t0 = Clock::now();
     // Sample table: quantized template values [S], then for sparse plans the pixel index v*W+u [S].
@@ -83,7 +93,7 @@ void VulkanBackend::do_score(const MapStorage& storage, const ScoringPlan& plan,
     ncc_kernel_->bind(buffers, views);
     // Specialization constants 0..7 of ncc_score.comp.
     const VkPipeline pipeline = ncc_kernel_->pipeline(
-        {score_group_size_, static_cast<std::uint32_t>(samples), static_cast<std::uint32_t>(map.chunks.size()),
+        {static_cast<std::uint32_t>(group_size), static_cast<std::uint32_t>(samples), static_cast<std::uint32_t>(map.chunks.size()),
          per_group, static_cast<std::uint32_t>(plan.width), plan.dense ? 1u : 0u, map.quads ? 1u : 0u, map.masked() ? 1u : 0u});
     const ScorePush push{static_cast<std::uint32_t>(map.width()), static_cast<std::uint32_t>(map.height()),
                          map.rows_per_chunk, static_cast<std::uint32_t>(particles), plan.cx, plan.cy, map.mask_words};

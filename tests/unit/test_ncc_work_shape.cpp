@@ -66,6 +66,19 @@ TEST(NccWorkShape, CudaTakesWholeWarps) {
     EXPECT_EQ(choose_cuda_ncc_shape(limits(1024, 32, 48 << 10, false)).particles_per_group, 1u);
 }
 
+TEST(NccWorkShape, VulkanGroupsWidenSoNoItemOutrunsLavapipesLoopBudget) {
+    // lavapipe on aarch64: 4-wide subgroups, a 640x480 template (307200 samples): 4 items would walk
+    // 76800 each; 16 walk 19200.
+    EXPECT_EQ(vulkan_group_for_samples(4, 640 * 480, 1024), 16u);
+    EXPECT_EQ(vulkan_group_for_samples(8, 455 * 341, 1024), 8u);  // a real flight's frame: unchanged
+    EXPECT_EQ(vulkan_group_for_samples(1, kVulkanMaxSamplesPerItem, 1024), 1u);
+    EXPECT_EQ(vulkan_group_for_samples(1, kVulkanMaxSamplesPerItem + 1, 1024), 2u);
+    EXPECT_EQ(vulkan_group_for_samples(256, 0, 1024), 256u);
+    // Beyond what the largest group can walk: 0, for the backend to refuse the plan.
+    EXPECT_EQ(vulkan_group_for_samples(4, kVulkanMaxSamplesPerItem * 1024, 1024), 1024u);
+    EXPECT_EQ(vulkan_group_for_samples(4, kVulkanMaxSamplesPerItem * 1024 + 1, 1024), 0u);
+}
+
 TEST(NccWorkShape, OddReportsStillGiveAValidShape) {
     for (bool host : {false, true})
         for (const auto& [g, l, m] : {std::tuple<std::size_t, std::size_t, std::size_t>{0, 0, 0}, {1, 1, 1}, {3, 48, 100},

@@ -92,6 +92,25 @@ TEST(VulkanPaths, ParticlesPerGroupMatchReference) {
     }
 }
 
+// lavapipe ends an invocation's loops after 65535 iterations: with small groups (a 4-wide
+// subgroup on aarch64, or a forced work_group) each item of a 640x480 template's group walked up
+// to 307200 samples and came back with a fraction of its sums; now the group widens for such plans.
+TEST(VulkanPaths, LargeTemplatesMatchReferenceInSmallGroups) {
+    TRN_REQUIRE_VULKAN();
+    auto ref = default_registry().create("cpu-ref");
+    const PaddedGray map = textured_image(1200, 1000, 71), templ = textured_image(640, 480, 72);
+    const std::vector<Pose> poses = {{600, 500, 0.3f, 0.8f}, {500, 400, 2.0f, 1.0f}, {700, 450, -1.2f, 1.1f}};
+    for (std::uint32_t size : {1u, 4u})
+        for (std::uint32_t count : {1u, 8u, 16u}) {
+            SCOPED_TRACE("work-group " + std::to_string(size) + ", particles per group " + std::to_string(count));
+            auto dut = vulkan_with([&](auto& v) {
+                v.work_group = size;
+                v.particles_per_group = count;
+            });
+            expect_scores_match(*dut, *ref, map.view(), templ.view(), poses, {});
+        }
+}
+
 TEST(VulkanPaths, BatchesSmallerThanAGroupMatchReference) {
     TRN_REQUIRE_VULKAN();
     auto dut = vulkan_with([](auto& v) { v.particles_per_group = 8; });  // 1, 3 and 7 poses take the smaller groups
