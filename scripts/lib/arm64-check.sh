@@ -75,7 +75,9 @@ arm64_check() {
   # it does). Inside the root with chroot (binfmt_misc's F flag keeps the emulator) every path is the
   # root's own, and PoCL runs: its tests run there, the repository and ../shared bound at their paths.
   local pocl_tests='^(conformance[.]opencl|LimitFiles[.]MemoryEstimatesAreRightWithin25Percent|FastestBackend[.].*)$'
-  run_tests -E "$pocl_tests"
+  # Under emulation the Vulkan conformance (both variants in one test) takes ~45 min: past ctest's
+  # default 1500 s for tests that set no timeout of their own.
+  run_tests -E "$pocl_tests" --timeout 5400
   trap chroot_unmount EXIT
   chroot_mount "$root" "rw:$repo" "ro:$repo/../shared"
   local pocl=passed
