@@ -6,8 +6,10 @@ source "$repo/scripts/lib/chroot-mounts.sh"
 # comparison of its scores and per-step estimates with the x86-64 build's.
 
 # What the conformance, unit and filter tests run (the rest of the build is not needed for them).
+# Then the real-flight localization test (trn_realflight_localize_tests) on the cpu backend.
 arm64_targets=(trnkit_cli trn_conformance trn_unit_tests trn_filter_tests trn_demo_start_cli_tests
-               trn_localize_start_cli_tests trn_identical_flights_tests trn_odometry_option_cli_tests)
+               trn_localize_start_cli_tests trn_identical_flights_tests trn_odometry_option_cli_tests
+               trn_realflight_localize_tests)
 
 # qemu-user runs aarch64 programs started by name (tests start trnkit from sh) once binfmt_misc
 # knows them: registered from Debian's qemu-user-static entry when missing.
@@ -21,10 +23,11 @@ arm64_binfmt() {
   [[ -e $dir/qemu-aarch64 ]] || grep -v '^#' /usr/lib/binfmt.d/qemu-aarch64.conf > "$dir/register"
 }
 
-# The cases both architectures score and localize, into DIR, with trnkit TRNKIT; MARCH names them.
-# FLIGHT is the simulated flight (simulated once, on x86-64, so both read the same frames).
+# The cases both architectures score and localize, into DIR, with trnkit TRNKIT. FLIGHT is the
+# simulated flight (simulated once, on x86-64, so both read the same frames); REAL the real flight's
+# AIR folder (realflight's 16 frames with their committed poses, made once, on x86-64).
 compare_cases() {
-  local trnkit=$1 dir=$2 flight=$3 data=$repo/../shared/data b
+  local trnkit=$1 dir=$2 flight=$3 real=$4 data=$repo/../shared/data b
   mkdir -p "$dir"
   # 120 poses over the whole map, some over its edges; yaw in whole degrees, scales 0.9 .. 1.1.
   awk 'BEGIN { for (i = 0; i < 120; ++i) printf "%d,%d,%.6f,%.2f\n", (i * 137) % 1800 - 20, (i * 211) % 1560 - 20, ((i * 29) % 360) * 3.14159265 / 180, 0.9 + (i % 5) * 0.05 }' > "$dir/poses.csv"
@@ -41,13 +44,21 @@ compare_cases() {
       --template "$data/realflight2/frames/frame_00000.png" --min-valid 0 --poses "$dir/poses2.csv" -o "$dir/score-nodata-$b.csv" 2>/dev/null ||
       echo "FAILED" > "$dir/score-nodata-$b.csv"
   done
+  local name
   for b in cpu-ref cpu; do
-    rm -rf "$dir/localize-$b"
-    "$trnkit" localize --dataset "$flight" --backend "$b" --seed 3 --max-particles 400 --out "$dir/localize-$b" >/dev/null 2>&1 || true
-    # Every column but the step's times (score_ms, step_ms: wall clock).
-    awk -F, -v OFS=, 'NR == 1 { for (i = 1; i <= NF; ++i) keep[i] = $i != "score_ms" && $i != "step_ms" }
-                      { line = ""; for (i = 1; i <= NF; ++i) if (keep[i]) line = line (line == "" ? "" : OFS) $i; print line }' \
-      "$dir/localize-$b/localization.csv" > "$dir/localize-$b.csv" 2>/dev/null || echo "FAILED" > "$dir/localize-$b.csv"
+    for name in localize real-localize; do
+      rm -rf "${dir:?}/$name-$b"
+      if [[ $name == localize ]]; then
+        "$trnkit" localize --dataset "$flight" --backend "$b" --seed 3 --max-particles 400 --out "$dir/$name-$b" >/dev/null 2>&1 || true
+      else  # the real-flight test's run (seed 1): a 50 m start prior, frames at 0.5 Hz
+        "$trnkit" localize --dataset "$real" --map "$data/orthophoto.png" --rate 0.5 --no-plots --init-radius-m 50 --seed 1 \
+          --backend "$b" --out "$dir/$name-$b" >/dev/null 2>&1 || true
+      fi
+      # Every column but the step's times (score_ms, step_ms: wall clock).
+      awk -F, -v OFS=, 'NR == 1 { for (i = 1; i <= NF; ++i) keep[i] = $i != "score_ms" && $i != "step_ms" }
+                        { line = ""; for (i = 1; i <= NF; ++i) if (keep[i]) line = line (line == "" ? "" : OFS) $i; print line }' \
+        "$dir/$name-$b/localization.csv" > "$dir/$name-$b.csv" 2>/dev/null || echo "FAILED" > "$dir/$name-$b.csv"
+    done
   done
 }
 
@@ -65,10 +76,7 @@ arm64_check() {
   export QEMU_LD_PREFIX=$root
   # Under qemu-user the Vulkan loader's own search finds no ICD: lavapipe named (a path in the root).
   export VK_DRIVER_FILES=/usr/share/vulkan/icd.d/lvp_icd.aarch64.json
-  mkdir -p "$build"
-  "$cmake_exe" -S "$repo" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_TOOLCHAIN_FILE="$repo/cmake/aarch64-linux-gnu.cmake" \
-    -DTRN_AARCH64_SYSROOT="$root" -DTRN_WITH_CUDA=OFF -DTRN_BUILD_BENCH=OFF -DCMAKE_DISABLE_FIND_PACKAGE_Python3=ON \
-    -DTRN_REQUIRE_BACKENDS="opencl;vulkan" > "$build/platform-check-configure.log" 2>&1 || { cat "$build/platform-check-configure.log" >&2; exit 1; }
+  arm64_configure "$repo" "$build" "$root" "$cmake_exe" || { cat "$build/platform-check-configure.log" >&2; exit 1; }
   build_checked --target "${arm64_targets[@]}"
   # PoCL under qemu-user with -L (QEMU_LD_PREFIX) aborts before its first kernel: it looks for its
   # kernel library with access(), which qemu-user 7.2 does not redirect into the root (open and stat
@@ -85,6 +93,12 @@ arm64_check() {
     pocl="FAILED (exit $?; $build/platform-check-pocl.log)"
   chroot "$root" "$build/tests/unit/trn_unit_tests" --gtest_filter='LimitFiles.MemoryEstimatesAreRightWithin25Percent:FastestBackend.*' \
     >> "$build/platform-check-pocl.log" 2>&1 || pocl="FAILED (exit $?; $build/platform-check-pocl.log)"
+  # The real-flight localization test (issue 12's acceptance: 5 seeds from a 50 m prior) with the
+  # NEON loop (its PoCL and lavapipe runs, 10 more localizations, are left to the byte comparison).
+  local realflight=passed
+  TRN_SHARED_DATA=$(realpath "$repo/../shared/data") "$build/tests/realflight/trn_realflight_localize_tests" --gtest_filter='*/cpu' \
+    > "$build/platform-check-realflight.log" 2>&1 || realflight="FAILED (exit $?; $build/platform-check-realflight.log)"
+  grep -q 'SKIPPED' "$build/platform-check-realflight.log" && realflight="SKIPPED ($(grep -m1 -o 'TRN_SHARED_DATA.*' "$build/platform-check-realflight.log"))"
 
   # The same cases on x86-64 (build/) and on arm64, compared byte for byte.
   local x86=$repo/build/apps/trnkit/trnkit arm=$build/apps/trnkit/trnkit out=$build/platform-compare arm_in_root=$build/trnkit-in-root
@@ -99,8 +113,11 @@ arm64_check() {
   rm -rf "$out"
   mkdir -p "$out"
   "$x86" simulate --scenario FR-200 --frames 40 --size-m 800 --map-year 2010 --out "$out/flight" >/dev/null 2>&1
-  compare_cases "$x86" "$out/x86_64" "$out/flight"
-  compare_cases "$arm_in_root" "$out/aarch64" "$out/flight"
+  local data=$repo/../shared/data
+  "$x86" register --map "$data/orthophoto.png" --verify "$repo/tests/data/realflight_poses.csv" --air-out "$out/realflight" \
+    "$data"/realflight/frame_000*.png >/dev/null 2>&1 || echo "platform-check: the real flight's AIR folder could not be made (../shared/data?)"
+  compare_cases "$x86" "$out/x86_64" "$out/flight" "$out/realflight"
+  compare_cases "$arm_in_root" "$out/aarch64" "$out/flight" "$out/realflight"
   local f same=0 differ=0 failed=0 not_run=() identical=yes
   for f in "$out"/x86_64/*.csv; do
     f=$(basename "$f")
@@ -127,9 +144,37 @@ arm64_check() {
   inner=$("$arm" devices -v 2>/dev/null | grep -o 'inner loop [A-Za-z0-9]*' | head -1 || true)
   echo "arm64: aarch64-linux-gnu-g++ $(aarch64-linux-gnu-g++ -dumpfullversion), CMake $cmake_version, $cold build" \
        "($compiled files compiled, $warnings warnings), under $(qemu-aarch64-static --version | head -1 | awk '{print $1, $2, $3}'):" \
-       "$tests_line, tests ok: $tests_ok; conformance on PoCL: $pocl; cpu ${inner:-inner loop ?}," \
+       "$tests_line, tests ok: $tests_ok; conformance on PoCL: $pocl; real-flight localization (cpu): $realflight; cpu ${inner:-inner loop ?}," \
        "cpu = cpu-portable = cpu-ref on arm64: $neon_ref; $same of $((same + differ + failed)) output files equal to x86-64's" \
        "($differ differ, $failed failed; not compared: ${not_run[*]:-none}); $(( $(date +%s) - start )) s;" \
        "bit-identical to x86-64: $identical"
-  [[ $tests_ok == yes && $identical == yes ]]
+  [[ $tests_ok == yes && $identical == yes && $pocl == passed && $realflight == passed ]]
+}
+
+# The device kit for arm64 (scripts/device-kit --arch arm64, from this cross build) run in a bare
+# arm64 Debian 12 root under qemu-user by tests/devicekit/kit_in_bare_root.sh, the x86-64 kit's own
+# check: cpu-ref and cpu conformance pass, OpenCL, Vulkan and CUDA are named not available, at most
+# 48 MiB. The emulated run gets a longer budget than the native one's 240 s.
+arm64_kit_check() {
+  apt_install_checked ninja-build crossbuild-essential-arm64 qemu-user-static debootstrap patchelf
+  if ! dpkg --print-foreign-architectures | grep -qx arm64; then
+    apt_wait_lock
+    dpkg --add-architecture arm64
+    apt-get update -qq
+  fi
+  arm64_binfmt
+  arm64_sysroot "$cache/arm64"
+  arm64_configure "$repo" "$build" "$cache/arm64/root" "$cmake_exe" || { cat "$build/platform-check-configure.log" >&2; exit 1; }
+  build_checked --target trnkit_cli trn_conformance trn_bench trnkit_io_devicekit
+  local log=$build/platform-check-kit.log budget=1800 rc
+  set +e
+  "$repo/tests/devicekit/kit_in_bare_root.sh" "$repo" "$build" "${XDG_CACHE_HOME:-$HOME/.cache}/trnkit/bare-debian12" \
+    "$budget" 1 arm64 > "$log" 2>&1
+  rc=$?
+  set -e
+  (( rc == 0 )) || grep -E 'FAILED|SKIPPED|failed' "$log" | head -20 >&2
+  echo "arm64-kit: aarch64-linux-gnu-g++ $(aarch64-linux-gnu-g++ -dumpfullversion), $cold build ($compiled files compiled," \
+       "$warnings warnings); $(grep -E '^(PASSED|FAILED|SKIPPED)' "$log" | tail -1); $(grep -o 'needs glibc.*' "$build/device-kit/MANIFEST.txt" 2>/dev/null);" \
+       "$(( $(date +%s) - start )) s; log $log"
+  (( rc == 0 ))
 }

@@ -3,11 +3,17 @@
 # trnkit's packages, cached between runs. Exit 77 with the reason on stderr when it cannot be made
 # here (not root, no debootstrap, no Debian mirror configured, the download failed).
 #
-# usage: tests/devicekit/bare_root.sh CACHE_DIR
+# usage: tests/devicekit/bare_root.sh CACHE_DIR [ARCH]
 # The mirror is the one this machine's apt already uses (its sources), so no host is named here.
+# ARCH (a Debian architecture, default this machine's): another one (arm64 on x86-64) is made in two
+# stages, the second run in the root through qemu-user (binfmt_misc; scripts/platform-check arm64
+# registers it).
 set -uo pipefail
-cache=${1:?usage: bare_root.sh CACHE_DIR}
+cache=${1:?usage: bare_root.sh CACHE_DIR [ARCH]}
+host_arch=$(dpkg --print-architecture 2>/dev/null || echo amd64)
+arch=${2:-$host_arch}
 root="$cache/bookworm-minbase"
+[[ "$arch" == "$host_arch" ]] || root="$cache/bookworm-minbase-$arch"
 
 skip() { echo "bare_root: cannot make a bare Debian root: $*" >&2; exit 77; }
 
@@ -31,8 +37,17 @@ fi
 mkdir -p "$cache" || skip "cannot create $cache"
 tmp="$cache/.partial-$$"
 rm -rf "$cache"/.partial-* 2>/dev/null
-log="$cache/debootstrap.log"
-if ! debootstrap --variant=minbase bookworm "$tmp" "$mirror" > "$log" 2>&1; then
+log="$root.debootstrap.log"  # one per root
+made=0
+if [[ "$arch" == "$host_arch" ]]; then
+  debootstrap --variant=minbase bookworm "$tmp" "$mirror" > "$log" 2>&1 && made=1
+else
+  [[ -e /proc/sys/fs/binfmt_misc/qemu-aarch64 || "$arch" != arm64 ]] ||
+    skip "aarch64 programs cannot run here (binfmt_misc has no qemu-aarch64: scripts/platform-check arm64 registers it)"
+  debootstrap --arch "$arch" --foreign --variant=minbase bookworm "$tmp" "$mirror" > "$log" 2>&1 &&
+    chroot "$tmp" /debootstrap/debootstrap --second-stage >> "$log" 2>&1 && made=1
+fi
+if (( ! made )); then
   tail -n 5 "$log" >&2
   rm -rf "$tmp"
   skip "debootstrap failed (log: $log)"

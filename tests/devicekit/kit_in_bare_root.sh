@@ -9,9 +9,12 @@
 # Exit 77 too for a build without the benchmarks (BENCH_BUILT 0: TRN_BUILD_BENCH=OFF, as the
 # asan-ubsan preset has it), which the kit packs.
 #
-# usage: kit_in_bare_root.sh REPO BUILD_DIR CACHE_DIR BUDGET_S [BENCH_BUILT]
+# ARCH (a Debian architecture; default this machine's): a kit of another one (arm64, from the cross
+# build) runs in a bare root of that architecture under qemu-user (scripts/platform-check arm64-kit).
+#
+# usage: kit_in_bare_root.sh REPO BUILD_DIR CACHE_DIR BUDGET_S [BENCH_BUILT [ARCH]]
 set -uo pipefail
-repo=$1 build=$2 cache=$3 budget=$4 bench_built=${5:-1}
+repo=$1 build=$2 cache=$3 budget=$4 bench_built=${5:-1} arch=${6:-}
 fail() { echo "FAILED: $*"; exit 1; }
 if [[ "$bench_built" == 0 ]]; then
   echo "SKIPPED: this build has no benchmarks (TRN_BUILD_BENCH=OFF, e.g. the asan-ubsan preset); the device kit packs trn_bench"
@@ -19,13 +22,13 @@ if [[ "$bench_built" == 0 ]]; then
 fi
 
 kit="$build/device-kit"
-"$repo/scripts/device-kit" --build "$build" --out "$kit" --no-build || fail "scripts/device-kit did not make the kit"
+"$repo/scripts/device-kit" ${arch:+--arch "$arch"} --build "$build" --out "$kit" --no-build || fail "scripts/device-kit did not make the kit"
 bytes=$(du -sb "$kit" | cut -f1)
 echo "kit: $kit, $bytes bytes ($((bytes >> 20)) MiB)"
 (( bytes <= 48 << 20 )) || fail "the kit is $((bytes >> 20)) MiB, over 48 MiB"
 grep -q "libopencv_imgcodecs\|libgdal" "$kit/MANIFEST.txt" && fail "the kit carries imgcodecs or GDAL (MANIFEST.txt)"
 
-root=$("$repo/tests/devicekit/bare_root.sh" "$cache")
+root=$("$repo/tests/devicekit/bare_root.sh" "$cache" ${arch:+"$arch"})
 rc=$?
 if (( rc == 77 )); then echo "SKIPPED: no bare Debian root here (reason above)"; exit 77; fi
 (( rc == 0 )) || fail "bare_root.sh failed ($rc)"
@@ -70,4 +73,5 @@ grep -qE '^- OpenCL: no NVIDIA ICD' "$s" || fail "the OpenCL ICD search is not r
 grep -qE '^- Vulkan: no ICD' "$s" || fail "the Vulkan ICD search is not reported"
 [[ -s "$out/bench.json" ]] || fail "no bench.json"
 grep -q '"name": "sobel/1920x1080/hot/dev:cpu' "$out/bench.json" || fail "bench.json has no Sobel 1080p row for cpu"
-echo "PASSED: kit $((bytes >> 20)) MiB; run in a bare Debian root: $elapsed s of $budget s, $n files"
+echo "PASSED: kit $((bytes >> 20)) MiB ($(grep -o 'architecture: .*' "$kit/MANIFEST.txt")); run in a bare Debian root" \
+     "($(chroot "$root" /usr/bin/uname -m)): $elapsed s of $budget s, $n files"
