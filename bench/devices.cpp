@@ -13,7 +13,7 @@ const std::vector<DeviceEntry>& bench_devices() {
     static const std::vector<DeviceEntry> devices = [] {
         std::vector<DeviceEntry> out;
         for (const FamilyStatus& s : default_registry().status(test::backend_options_from_environment()))
-            for (const DeviceInfo& d : s.devices) out.push_back({d.name, d.family, d.type, d.device});
+            for (const DeviceInfo& d : s.devices) out.push_back({d.name, d.family, d.type, d.device, d.details});
         return out;
     }();
     return devices;

@@ -13,6 +13,7 @@ struct DeviceEntry {
     std::string family;  // "cpu-ref", "cpu", "opencl", "vulkan"
     std::string type;    // "cpu", "gpu", "other" (DeviceInfo::type)
     std::string device;  // e.g. "NVIDIA H200"
+    std::string details;  // DeviceInfo::details (the cpu backend's: its threads and inner loop)
 };
 
 // Every device the registry lists in this build, in registry order.

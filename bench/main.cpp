@@ -5,6 +5,7 @@
 #include <benchmark/benchmark.h>
 #include <omp.h>
 
+#include <sys/utsname.h>
 #include <unistd.h>
 
 #include <cstdlib>
@@ -73,6 +74,12 @@ int main(int argc, char** argv) {
             described += (described.empty() ? "" : "; ") + d.name + "=" + d.type + "=" + d.device;
         benchmark::AddCustomContext("trn_device_types", described);
         benchmark::AddCustomContext("trn_map", bench_map().source);
+        // Which machine and which cpu inner loop (AVX2, NEON or portable) the cpu rows measured: the
+        // row a board's run adds to the platforms' comparison (docs/PLATFORMS.md).
+        utsname host{};
+        benchmark::AddCustomContext("trn_arch", uname(&host) == 0 ? host.machine : "unknown");
+        for (const DeviceEntry& d : bench_devices())
+            if (d.name == "cpu") benchmark::AddCustomContext("trn_cpu_backend", d.details);
         // OpenMP's wait policy decides whether the cpu backend survives a loaded machine.
         const char* omp_threads = std::getenv("OMP_NUM_THREADS");
         const char* omp_wait = std::getenv("OMP_WAIT_POLICY");

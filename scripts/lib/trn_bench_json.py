@@ -28,7 +28,8 @@ class BenchJsonError(Exception):
 
 # Fields the report reads as text / as numbers (context; a benchmark's own counters).
 CONTEXT_TEXT = ("date", "host_name", "trn_command", "trn_sweep", "trn_devices", "trn_device_types", "trn_map",
-                "trn_opencv", "trn_openmp", "trn_cold_working_set_MiB", "trn_cold_working_set_basis")
+                "trn_opencv", "trn_openmp", "trn_cold_working_set_MiB", "trn_cold_working_set_basis", "trn_arch",
+                "trn_cpu_backend")
 RUN_TEXT = ("name", "run_name", "run_type", "aggregate_name", "error_message", "label")
 RUN_NUMBERS = ("real_time", "GB/s", "exec_GB/s", "Mpix/s", "particles/s", "Msamples/s", "write_ms", "exec_ms", "read_ms",
                "allocs_per_iter", "passes", "pass_cv", "max_cv", "unstable", "create_ms", "first_calls_ms")

@@ -32,6 +32,8 @@ expect ncc_without_old_path.json "NCC cpu 160x120 dense (the filter's case) >= 2
 report ncc_cuda_beside_peers.json
 expect ncc_cuda_beside_peers.json "NCC filter case on cuda:0 (NVIDIA H200) >= 1.0x the faster of OpenCL and Vulkan on the same device: **not met** — 360 vs vulkan:0 400 particles/s = 0.90x"
 expect ncc_cuda_beside_peers.json "random-gather limit: not measured"
+# The machine and the cpu loop the cpu rows measured (a board's run names its NEON loop).
+expect ncc_cuda_beside_peers.json "Architecture: aarch64; cpu backend: 12 threads (TRN_CPU_THREADS), 12 hardware threads, inner loop NEON"
 expect ncc_issue14_targets.json "No CUDA device in this run: the CUDA targets were not measured."
 # Issue 43: the frame-to-MAVLink latency table, ratios to cpu as the bench computed them, an error row kept.
 report latency_frame_to_mavlink.json
