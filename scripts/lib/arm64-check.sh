@@ -84,6 +84,14 @@ arm64_check() {
   # it does). Inside the root with chroot (binfmt_misc's F flag keeps the emulator) every path is the
   # root's own, and PoCL runs: its tests run there, the repository and ../shared bound at their paths.
   local pocl_tests='^(conformance[.]opencl|LimitFiles[.]MemoryEstimatesAreRightWithin25Percent|FastestBackend[.].*|EveryBackend/IdenticalFlights[.].*/opencl.*)$'
+  # Left out under emulation (named in the summary): LimitFiles.MemoryEstimatesAreRightWithin25Percent
+  # measures peak RSS after malloc_trim, but qemu-user does not always pass madvise(MADV_DONTNEED)
+  # through ("a hint, so ignoring and returning success is ok"), so freed heap pages stay resident
+  # and are reused unseen: PoCL's 8 MiB map measured 0.06-0.26 B/px of its 1.
+  local not_emulated='LimitFiles.MemoryEstimatesAreRightWithin25Percent (qemu-user keeps freed pages resident)'
+  # The chroot runs get the shared data as ctest's runs do.
+  export TRN_SHARED_DATA
+  TRN_SHARED_DATA=$(realpath "$repo/../shared/data" 2>/dev/null || echo "")
   # Under emulation programs run ~10-30x slower: a test's own timeout (filter.cli_profile's 300 s,
   # sized for native runs) is multiplied by 10 in the generated test files (CMake 3.22 has no
   # multiplier; CMake regenerates them at the next configure), and tests without one get 5400 s.
@@ -94,14 +102,15 @@ arm64_check() {
   local pocl=passed
   chroot "$root" "$build/tests/conformance/trn_conformance" --backend opencl --require > "$build/platform-check-pocl.log" 2>&1 ||
     pocl="FAILED (exit $?; $build/platform-check-pocl.log)"
-  chroot "$root" "$build/tests/unit/trn_unit_tests" --gtest_filter='LimitFiles.MemoryEstimatesAreRightWithin25Percent:FastestBackend.*' \
+  chroot "$root" "$build/tests/unit/trn_unit_tests" --gtest_filter='FastestBackend.*' \
     >> "$build/platform-check-pocl.log" 2>&1 || pocl="FAILED (exit $?; $build/platform-check-pocl.log)"
   chroot "$root" "$build/tests/filter/trn_identical_flights_tests" --gtest_filter='*/opencl' \
     >> "$build/platform-check-pocl.log" 2>&1 || pocl="FAILED (exit $?; $build/platform-check-pocl.log)"
   # The real-flight localization test (issue 12's acceptance: 5 seeds from a 50 m prior) with the
-  # NEON loop (its PoCL and lavapipe runs, 10 more localizations, are left to the byte comparison).
+  # NEON loop (its PoCL and lavapipe variants, 10 more emulated localizations, are not run: every
+  # backend's scores are compared byte for byte below).
   local realflight=passed
-  TRN_SHARED_DATA=$(realpath "$repo/../shared/data") "$build/tests/realflight/trn_realflight_localize_tests" --gtest_filter='*/cpu' \
+  "$build/tests/realflight/trn_realflight_localize_tests" --gtest_filter='*/cpu' \
     > "$build/platform-check-realflight.log" 2>&1 || realflight="FAILED (exit $?; $build/platform-check-realflight.log)"
   grep -q 'SKIPPED' "$build/platform-check-realflight.log" && realflight="SKIPPED ($(grep -m1 -o 'TRN_SHARED_DATA.*' "$build/platform-check-realflight.log"))"
 
@@ -115,6 +124,11 @@ arm64_check() {
     "$cmake_exe" -S "$repo" -B "$repo/build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
     "$cmake_exe" --build "$repo/build" -j "$jobs" --target trnkit_cli >/dev/null
   fi
+  # The x86-64 trnkit without the emulation's variables (VK_DRIVER_FILES names the root's lavapipe).
+  local x86_plain=$build/trnkit-x86-64
+  printf '#!/bin/sh\nexec env -u VK_DRIVER_FILES -u QEMU_LD_PREFIX %q "$@"\n' "$x86" > "$x86_plain"
+  chmod 755 "$x86_plain"
+  x86=$x86_plain
   rm -rf "$out"
   mkdir -p "$out"
   "$x86" simulate --scenario FR-200 --frames 40 --size-m 800 --map-year 2010 --out "$out/flight" >/dev/null 2>&1
@@ -149,7 +163,7 @@ arm64_check() {
   inner=$("$arm" devices -v 2>/dev/null | grep -o 'inner loop [A-Za-z0-9]*' | head -1 || true)
   echo "arm64: aarch64-linux-gnu-g++ $(aarch64-linux-gnu-g++ -dumpfullversion), CMake $cmake_version, $cold build" \
        "($compiled files compiled, $warnings warnings), under $(qemu-aarch64-static --version | head -1 | awk '{print $1, $2, $3}'):" \
-       "$tests_line, tests ok: $tests_ok; conformance on PoCL: $pocl; real-flight localization (cpu): $realflight; cpu ${inner:-inner loop ?}," \
+       "$tests_line, tests ok: $tests_ok; left out under emulation: $not_emulated; conformance on PoCL: $pocl; real-flight localization (cpu): $realflight; cpu ${inner:-inner loop ?}," \
        "cpu = cpu-portable = cpu-ref on arm64: $neon_ref; $same of $((same + differ + failed)) output files equal to x86-64's" \
        "($differ differ, $failed failed; not compared: ${not_run[*]:-none}); $(( $(date +%s) - start )) s;" \
        "bit-identical to x86-64: $identical"

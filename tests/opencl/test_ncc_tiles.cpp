@@ -77,8 +77,9 @@ TEST_P(OpenClNccTiles, MatchesCpuRefForEveryShape) {
     ScopedEnv env("TRN_OPENCL_WORK_GROUP", group.empty() ? std::nullopt : std::optional<std::string>(group));
     const auto dut = default_registry().create("opencl", test::backend_options_from_environment());
     const auto ref = default_registry().create("cpu-ref");
-    if (!group.empty())
+    if (!group.empty()) {  // (braces: EXPECT_* is an if/else, GCC 11's -Wdangling-else)
         EXPECT_NE(dut->info().details.find("NCC work-group " + group + ","), std::string::npos) << dut->info().details;
+    }
     const std::vector<std::uint8_t> map = textured_pixels(kMapW, kMapH, 3);
     for (const Shape& shape : kShapes) expect_matches_reference(*dut, *ref, map, shape);
 }
