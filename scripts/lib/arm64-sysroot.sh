@@ -82,11 +82,12 @@ arm64_sysroot_fixups() {
 
 # arm64_configure REPO BUILD ROOT CMAKE: configures BUILD as the cross build against ROOT, with the
 # options platform-check arm64 and device-kit --arch arm64 share (no CUDA; no Python module: the
-# host's Python cannot build an aarch64 one); the log in BUILD/platform-check-configure.log.
+# host's Python cannot build an aarch64 one; the benchmarks on, for the kit, whatever an older
+# configure of the folder cached); the log in BUILD/platform-check-configure.log.
 arm64_configure() {
   local repo=$1 build=$2 root=$3 cmake=$4
   mkdir -p "$build"
   "$cmake" -S "$repo" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_TOOLCHAIN_FILE="$repo/cmake/aarch64-linux-gnu.cmake" \
-    -DTRN_AARCH64_SYSROOT="$root" -DTRN_WITH_CUDA=OFF -DCMAKE_DISABLE_FIND_PACKAGE_Python3=ON \
+    -DTRN_AARCH64_SYSROOT="$root" -DTRN_WITH_CUDA=OFF -DTRN_BUILD_BENCH=ON -DCMAKE_DISABLE_FIND_PACKAGE_Python3=ON \
     -DTRN_REQUIRE_BACKENDS="opencl;vulkan" > "$build/platform-check-configure.log" 2>&1
 }
