@@ -9,7 +9,7 @@
 # What trnkit links and tests with on arm64: toolchain runtime, the libraries of scripts/install-deps.sh,
 # the OpenCL ICD loader with PoCL, the Vulkan loader with Mesa's lavapipe.
 arm64_sysroot_packages=(
-  libc6-dev libstdc++-12-dev libgomp1
+  libc6-dev libstdc++-12-dev libgomp1 dash
   libopencv-dev libeigen3-dev nlohmann-json3-dev libcli11-dev libboost-dev libexiv2-dev libpng-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   ocl-icd-opencl-dev opencl-c-headers opencl-clhpp-headers pocl-opencl-icd
@@ -73,6 +73,11 @@ arm64_sysroot_fixups() {
     target=$(readlink "$link")
     ln -sfn "$(realpath -m --relative-to="$(dirname "$link")" "$root$target")" "$link"
   done < <(find "$root" -type l -lname '/*')
+  # dash's maintainer script makes /bin/sh: tests run trnkit through it (popen), in the root too.
+  [[ -e $root/bin/sh || ! -e $root/bin/dash ]] || ln -s dash "$root/bin/sh"
+  # Programs run in the root (chroot) want a /tmp (std::filesystem::temp_directory_path).
+  mkdir -p "$root/tmp"
+  chmod 1777 "$root/tmp"
   # update-alternatives' libblas.so.3 and liblapack.so.3 (OpenCV's core links them).
   for lib in "$root"/usr/lib/aarch64-linux-gnu/{blas,lapack}/lib*.so.3; do
     [[ -e $lib ]] && ln -sfn "${lib#"$root"/usr/lib/aarch64-linux-gnu/}" "$root/usr/lib/aarch64-linux-gnu/$(basename "$lib")"

@@ -72,8 +72,8 @@ std::vector<std::pair<double, double>> samples(const fs::path& log, const std::s
 double trapezoid(const std::vector<std::pair<double, double>>& s, double a, double b) {
     double e = 0;
     for (std::size_t k = 0; k + 1 < s.size(); ++k) {
-        const auto [t0, w0] = s[k];
-        const auto [t1, w1] = s[k + 1];
+        // (Plain names, not structured bindings: a lambda may capture those only from Clang 16.)
+        const double t0 = s[k].first, w0 = s[k].second, t1 = s[k + 1].first, w1 = s[k + 1].second;
         const double x = std::max(a, t0), y = std::min(b, t1);
         if (y <= x) continue;
         const auto at = [&](double t) { return w0 + (w1 - w0) * (t - t0) / (t1 - t0); };

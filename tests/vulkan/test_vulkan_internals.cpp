@@ -20,7 +20,8 @@ TEST(VulkanValidation, AMessageFailsTheCallWithItsText) {
     TRN_REQUIRE_VULKAN();
     vk::Context ctx(std::make_unique<vk::Instance>(true), 0);
     ctx.throw_on_validation_messages("nothing yet");  // a clean device reports nothing
-    VkFenceCreateInfo info{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    VkFenceCreateInfo info{};
+    info.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
     info.flags = 0x100;  // not a VkFenceCreateFlagBits value: the layer must object
     VkFence fence = VK_NULL_HANDLE;
     ASSERT_EQ(ctx.api().vkCreateFence(ctx.device(), &info, nullptr, &fence), VK_SUCCESS);
