@@ -213,7 +213,8 @@ TEST(MavlinkEndpoint, TheFormsMavlinkUsersWrite) {
         {"/dev/ttyACM0", "only UDP"},          {"udp:127.0.0.1", "no port"},     {"udp::14550", "no host"},
         {"udp:127.0.0.1:0", "1..65535"},       {"udp:127.0.0.1:70000", "1..65535"}, {"udp:::1:14550", "brackets"},
         {"14550", "expected udp:HOST:PORT"}};
-    for (const auto& [text, why] : refused) {
+    for (const auto& [text_binding, why] : refused) {
+        const char* text = text_binding;  // a lambda captures structured bindings only from Clang 16
         const std::string message = error_of([&] { mav::parse_endpoint(text, "--mavlink"); });
         EXPECT_EQ(message.rfind(std::string("--mavlink ") + text, 0), 0u) << message;
         EXPECT_NE(message.find(why), std::string::npos) << message;
