@@ -63,8 +63,10 @@ compare_cases() {
   done
 }
 
-arm64_check() {
-  apt_install_checked ninja-build crossbuild-essential-arm64 qemu-user-static
+# What both arm64 checks need first: the cross tools and qemu (and the packages named), dpkg's arm64 lists,
+# binfmt_misc, the arm64 root, and the cross build configured in $build.
+arm64_prepare() {
+  apt_install_checked ninja-build crossbuild-essential-arm64 qemu-user-static "$@"
   if ! dpkg --print-foreign-architectures | grep -qx arm64; then
     apt_wait_lock
     echo "platform-check: adding the arm64 architecture to dpkg (package lists only; nothing arm64 is installed)"
@@ -73,11 +75,15 @@ arm64_check() {
   fi
   arm64_binfmt
   arm64_sysroot "$cache/arm64"
+  arm64_configure "$repo" "$build" "$cache/arm64/root" "$cmake_exe" || { cat "$build/platform-check-configure.log" >&2; exit 1; }
+}
+
+arm64_check() {
+  arm64_prepare
   local root=$cache/arm64/root
   export QEMU_LD_PREFIX=$root
   # Under qemu-user the Vulkan loader's own search finds no ICD: lavapipe named (a path in the root).
   export VK_DRIVER_FILES=/usr/share/vulkan/icd.d/lvp_icd.aarch64.json
-  arm64_configure "$repo" "$build" "$root" "$cmake_exe" || { cat "$build/platform-check-configure.log" >&2; exit 1; }
   build_checked --target "${arm64_targets[@]}"
   # PoCL under qemu-user with -L (QEMU_LD_PREFIX) aborts before its first kernel: it looks for its
   # kernel library with access(), which qemu-user 7.2 does not redirect into the root (open and stat
@@ -175,15 +181,7 @@ arm64_check() {
 # check: cpu-ref and cpu conformance pass, OpenCL, Vulkan and CUDA are named not available, at most
 # 48 MiB. The emulated run gets a longer budget than the native one's 240 s.
 arm64_kit_check() {
-  apt_install_checked ninja-build crossbuild-essential-arm64 qemu-user-static debootstrap patchelf
-  if ! dpkg --print-foreign-architectures | grep -qx arm64; then
-    apt_wait_lock
-    dpkg --add-architecture arm64
-    apt-get update -qq
-  fi
-  arm64_binfmt
-  arm64_sysroot "$cache/arm64"
-  arm64_configure "$repo" "$build" "$cache/arm64/root" "$cmake_exe" || { cat "$build/platform-check-configure.log" >&2; exit 1; }
+  arm64_prepare debootstrap patchelf
   build_checked --target trnkit_cli trn_conformance trn_bench trnkit_io_devicekit
   local log=$build/platform-check-kit.log budget=1800 rc
   set +e
