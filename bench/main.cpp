@@ -69,17 +69,18 @@ int main(int argc, char** argv) {
         if (const char* cmd = std::getenv("TRN_BENCH_COMMAND"); cmd && *cmd) benchmark::AddCustomContext("trn_command", cmd);
         benchmark::AddCustomContext("trn_devices", devices);
         // Which devices are GPUs (the report's GPU targets apply to those only), and what they are.
-        std::string described;
-        for (const DeviceEntry& d : bench_devices())
+        // And the cpu backend's threads and inner loop (AVX2, NEON or portable): with trn_arch below,
+        // the row a board's run adds to the platforms' comparison (docs/PLATFORMS.md).
+        std::string described, cpu_backend;
+        for (const DeviceEntry& d : bench_devices()) {
             described += (described.empty() ? "" : "; ") + d.name + "=" + d.type + "=" + d.device;
+            if (d.name == "cpu") cpu_backend = d.details;
+        }
         benchmark::AddCustomContext("trn_device_types", described);
         benchmark::AddCustomContext("trn_map", bench_map().source);
-        // Which machine and which cpu inner loop (AVX2, NEON or portable) the cpu rows measured: the
-        // row a board's run adds to the platforms' comparison (docs/PLATFORMS.md).
         utsname host{};
         benchmark::AddCustomContext("trn_arch", uname(&host) == 0 ? host.machine : "unknown");
-        for (const DeviceEntry& d : bench_devices())
-            if (d.name == "cpu") benchmark::AddCustomContext("trn_cpu_backend", d.details);
+        if (!cpu_backend.empty()) benchmark::AddCustomContext("trn_cpu_backend", cpu_backend);
         // OpenMP's wait policy decides whether the cpu backend survives a loaded machine.
         const char* omp_threads = std::getenv("OMP_NUM_THREADS");
         const char* omp_wait = std::getenv("OMP_WAIT_POLICY");

@@ -50,6 +50,9 @@ NccWorkShape choose_vulkan_ncc_shape(const NccDeviceLimits& limits);
 // one iteration per sample an invocation walks, so no invocation may walk more than this many
 // (half the budget: the outer run loop and any loop the compiler does not unroll take the rest).
 inline constexpr std::size_t kVulkanMaxSamplesPerItem = 32768;
+// The largest Vulkan scoring group (the work_group option's bound): ncc_score.comp's 16 KiB of
+// shared memory holds a partial per item for groups up to 2048.
+inline constexpr std::size_t kVulkanMaxScoreGroup = 1024;
 
 // The work-group size that scores a plan of `samples` samples: `group`, doubled while an item
 // would walk more than kVulkanMaxSamplesPerItem samples; 0 when even `max_group` (a power of two)

@@ -36,15 +36,16 @@ NccDeviceLimits ncc_device_limits(const Context& ctx) {
     return limits;
 }
 
-// The device's shape, with options.work_group (a power of two <= 1024) and
+// The device's shape, with options.work_group (a power of two <= kVulkanMaxScoreGroup) and
 // options.particles_per_group (1..16) replacing its parts when set (for tuning); the group always
 // within the device limits.
 NccWorkShape choose_score_shape(const Context& ctx, const BackendOptions::Vulkan& options) {
     const NccDeviceLimits limits = ncc_device_limits(ctx);
     NccWorkShape shape = choose_vulkan_ncc_shape(limits);
     if (const std::uint32_t v = options.work_group; v != 0) {
-        if (v > 1024 || (v & (v - 1)) != 0)
-            throw Error("vulkan: BackendOptions.vulkan.work_group = " + std::to_string(v) + " is not a power of two in [1, 1024]");
+        if (v > kVulkanMaxScoreGroup || (v & (v - 1)) != 0)
+            throw Error("vulkan: BackendOptions.vulkan.work_group = " + std::to_string(v) + " is not a power of two in [1, " +
+                        std::to_string(kVulkanMaxScoreGroup) + "]");
         shape.group_size = v;
     }
     if (const std::uint32_t v = options.particles_per_group; v != 0) {
@@ -88,6 +89,8 @@ VulkanBackend::VulkanBackend(int index, const BackendOptions::Vulkan& options)
     map_placement_.band_quads = std::min<std::size_t>(ctx.limits().maxTexelBufferElements, kMaxAllocation / 4);
     const NccWorkShape score_shape = choose_score_shape(ctx, options);
     score_group_size_ = static_cast<std::uint32_t>(score_shape.group_size);
+    // Large plans widen the group up to this (vulkan_group_for_samples, per call).
+    score_max_group_ = floor_pow2(std::min(ncc_device_limits(ctx).max_group_size, kVulkanMaxScoreGroup));
     particles_per_group_ = static_cast<std::uint32_t>(score_shape.particles_per_group);
     sobel_limits_ = sobel_work_group_limits(ctx);
     sobel_shape_ = choose_sobel_work_shape(sobel_limits_, kSobelStripPixels, 1);  // the group; rows per item vary per call

@@ -102,6 +102,7 @@ private:
     std::unique_ptr<Recorder> recorder_;
     std::unique_ptr<Kernel> ncc_kernel_, sobel_kernel_;
     std::uint32_t score_group_size_ = 64;
+    std::size_t score_max_group_ = 1;  // the widest scoring group this device takes (a power of two)
     std::uint32_t particles_per_group_ = 1;  // at most; see do_score
     WorkGroupLimits sobel_limits_;  // from the device's queries (vulkan_sobel.cpp)
     SobelWorkShape sobel_shape_;    // its work-group (rows per item are chosen per band)

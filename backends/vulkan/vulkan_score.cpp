@@ -5,7 +5,6 @@
 #include <cstring>
 
 #include "../common/ncc_work_shape.hpp"
-#include "../common/pow2.hpp"
 #include "trn/impl/particle_sums.hpp"
 #include "vulkan_backend_impl.hpp"
 
@@ -51,12 +50,10 @@ void VulkanBackend::do_score(const MapStorage& storage, const ScoringPlan& plan,
     if (std::size_t(plan.width) * std::size_t(plan.height) > 0xFFFFFFFFu)
         throw Error("score: a " + std::to_string(plan.width) + "x" + std::to_string(plan.height) + " template is too large for " + info_.name);
     // Large plans take wider groups, so that no invocation outruns lavapipe's loop budget.
-    // (At most 1024, the largest work_group option, within the kernel's 16 KiB of shared memory.)
-    const std::size_t max_group = floor_pow2(std::min<std::size_t>({lim.maxComputeWorkGroupInvocations, lim.maxComputeWorkGroupSize[0], 1024}));
-    const std::size_t group_size = vulkan_group_for_samples(score_group_size_, samples, max_group);
+    const std::size_t group_size = vulkan_group_for_samples(score_group_size_, samples, score_max_group_);
     if (group_size == 0)
         throw Error("score: the plan's " + std::to_string(samples) + " samples exceed the " +
-                    std::to_string(kVulkanMaxSamplesPerItem * max_group) + " one work-group of " + info_.name +
+                    std::to_string(kVulkanMaxSamplesPerItem * score_max_group_) + " one work-group of " + info_.name +
                     " may walk; sample the template sparser");
 
     const auto t0 = Clock::now();
