@@ -4,6 +4,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include <cctype>
+#include <cstdint>
 #include <cstdio>
 #include <mutex>
 #include <vector>
@@ -36,13 +37,22 @@ std::string tag_name(const char* key) {
     return k.substr(k.find_last_of('.') + 1);
 }
 
+// The first value of an integer tag. exiv2 0.28 (Debian 13) renamed toLong(long) to toInt64(size_t).
+std::int64_t first_integer(const Exiv2::Exifdatum& d) {
+#if EXIV2_TEST_VERSION(0, 28, 0)
+    return d.toInt64(0);
+#else
+    return d.toLong(0);
+#endif
+}
+
 // Value i of a rational tag as a double; a zero denominator or a tag of another type names the tag.
-double rational(const Exiv2::Exifdatum& d, long i, const std::string& name, const char* key) {
+double rational(const Exiv2::Exifdatum& d, std::size_t i, const std::string& name, const char* key) {
     const Exiv2::TypeId t = d.typeId();
     if (t != Exiv2::unsignedRational && t != Exiv2::signedRational)
         throw Error(name + ": EXIF " + tag_name(key) + " is of type " + (Exiv2::TypeInfo::typeName(t) ? Exiv2::TypeInfo::typeName(t) : "?") +
                     ", not a rational number");
-    if (d.count() <= i)
+    if (static_cast<std::size_t>(d.count()) <= i)  // count(): long in exiv2 0.27, size_t in 0.28
         throw Error(name + ": EXIF " + tag_name(key) + " has " + std::to_string(d.count()) + " values, expected at least " + std::to_string(i + 1));
     const Exiv2::Rational r = d.toRational(i);
     if (r.second == 0) throw Error(name + ": EXIF " + tag_name(key) + " has a zero denominator (" + std::to_string(r.first) + "/0)");
@@ -91,8 +101,9 @@ PhotoExif parse_photo_exif(std::string_view bytes, const std::string& name) {
     // The image keeps its ExifData: only references to it here, so no exiv2 container is
     // instantiated in this file (its weak symbols would be exported beside our API, and the device
     // kit's io layer must export exactly the same).
-    // exiv2 0.27 hands the image over as Image::AutoPtr, a std::auto_ptr (deprecated): taken by
-    // auto, never named here, so Clang's -Wdeprecated-declarations has nothing to report.
+    // exiv2 0.27 hands the image over as Image::AutoPtr, a std::auto_ptr (deprecated), 0.28 as
+    // Image::UniquePtr: taken by auto, never named here (and Clang's -Wdeprecated-declarations has
+    // nothing to report).
     auto image = [&] {
         try {
             auto opened =
@@ -131,11 +142,11 @@ PhotoExif parse_photo_exif(std::string_view bytes, const std::string& name) {
             const auto* unit = find(exif, "Exif.Photo.FocalPlaneResolutionUnit");
             const auto* recorded = find(exif, "Exif.Photo.PixelXDimension");
             p.sensor_width_mm = detail::focal_plane_sensor_width_mm(
-                rational(*d, 0, name, "Exif.Photo.FocalPlaneXResolution"), unit && unit->count() == 1 ? unit->toLong(0) : 2,
-                recorded && recorded->count() == 1 ? double(recorded->toLong(0)) : 0, p.width);
+                rational(*d, 0, name, "Exif.Photo.FocalPlaneXResolution"), unit && unit->count() == 1 ? first_integer(*unit) : 2,
+                recorded && recorded->count() == 1 ? double(first_integer(*recorded)) : 0, p.width);
         }
         if (const auto* d = find(exif, "Exif.Image.Orientation")) {
-            const long o = d->count() == 1 ? d->toLong(0) : -1;
+            const std::int64_t o = d->count() == 1 ? first_integer(*d) : -1;
             if (o < 1 || o > 8) throw Error(name + ": EXIF Orientation " + quote_input(d->toString()) + " is not one of 1..8");
             p.orientation = static_cast<int>(o);
         }
@@ -150,7 +161,7 @@ PhotoExif parse_photo_exif(std::string_view bytes, const std::string& name) {
             if (const auto* a = find(exif, "Exif.GPSInfo.GPSAltitude")) {
                 const double alt = rational(*a, 0, name, "Exif.GPSInfo.GPSAltitude");
                 const auto* ref = find(exif, "Exif.GPSInfo.GPSAltitudeRef");
-                p.gps->altitude_m = ref && ref->count() == 1 && ref->toLong(0) == 1 ? -alt : alt;
+                p.gps->altitude_m = ref && ref->count() == 1 && first_integer(*ref) == 1 ? -alt : alt;
             }
         }
     } catch (const Error&) {

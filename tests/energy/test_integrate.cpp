@@ -1,6 +1,7 @@
 // Synthetic traces with analytically known integrals.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <random>

@@ -1,5 +1,6 @@
 #include "trn/energy/ina219.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <random>
