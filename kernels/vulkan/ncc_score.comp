@@ -29,6 +29,9 @@
 //         need more bands than that.
 // No-data (MASKED): a sample on a cell with an invalid pixel is left out like one off the map.
 #extension GL_GOOGLE_include_directive : require
+// texelFetch on a texture without a sampler: SPIR-V reads the texel buffer with OpImageFetch on the
+// image itself (a sampled image of Dim Buffer is invalid from SPIR-V 1.6 and newer validators warn).
+#extension GL_EXT_samplerless_texture_functions : require
 #ifdef TRN_SUBGROUP_REDUCE
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
@@ -55,7 +58,7 @@ layout(std430, binding = 1) readonly buffer Affines { float affines[]; };  // a 
 // Per particle six 64-bit sums as (low, high) words: n, sum I, sum I^2, sum I*T, sum T, sum T^2.
 layout(std430, binding = 2) writeonly buffer Sums { uvec2 sums[]; };
 layout(std430, binding = 3) readonly buffer MapChunk { uint words[]; } map_chunks[TRN_MAX_MAP_CHUNKS];  // bytes layout
-layout(binding = 4) uniform usamplerBuffer map_quads[TRN_MAX_MAP_CHUNKS];  // quad layout (R32_UINT)
+layout(binding = 4) uniform utextureBuffer map_quads[TRN_MAX_MAP_CHUNKS];  // quad layout (R32_UINT)
 // No-data: one bit per 2x2 cell, set where all four pixels are valid (trn/impl/cell_mask.hpp),
 // mask_words words per row of cells. Read only when MASKED.
 layout(std430, binding = 5) readonly buffer CellMask { uint cells[]; };
