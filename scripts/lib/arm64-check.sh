@@ -185,7 +185,7 @@ arm64_kit_check() {
   build_checked --target trnkit_cli trn_conformance trn_bench trnkit_io_devicekit
   local log=$build/platform-check-kit.log budget=1800 rc
   set +e
-  "$repo/tests/devicekit/kit_in_bare_root.sh" "$repo" "$build" "${XDG_CACHE_HOME:-$HOME/.cache}/trnkit/bare-debian12" \
+  "$repo/tests/devicekit/kit_in_bare_root.sh" "$repo" "$build" "${XDG_CACHE_HOME:-$HOME/.cache}/trnkit/bare-debian" \
     "$budget" 1 arm64 > "$log" 2>&1
   rc=$?
   set -e

@@ -1,6 +1,9 @@
 #!/usr/bin/env bash
-# Makes (once) and prints the path of a bare Debian 12 root: debootstrap --variant=minbase, none of
-# trnkit's packages, cached between runs. Exit 77 with the reason on stderr when it cannot be made
+# Makes (once) and prints the path of a bare Debian root: debootstrap --variant=minbase, none of
+# trnkit's packages, cached between runs. Its release is the one the kit was built against, as its
+# glibc is the floor the kit needs: this machine's own (bookworm = Debian 12, trixie = Debian 13)
+# for this machine's architecture; Debian 12 for another one (the arm64 cross build's libraries
+# come from Debian 12: scripts/lib/arm64-sysroot.sh). Exit 77 with the reason on stderr when it cannot be made
 # here (not root, no debootstrap, no Debian mirror configured, the download failed).
 #
 # usage: tests/devicekit/bare_root.sh CACHE_DIR [ARCH]
@@ -12,8 +15,13 @@ set -uo pipefail
 cache=${1:?usage: bare_root.sh CACHE_DIR [ARCH]}
 host_arch=$(dpkg --print-architecture 2>/dev/null || echo amd64)
 arch=${2:-$host_arch}
-root="$cache/bookworm-minbase"
-[[ "$arch" == "$host_arch" ]] || root="$cache/bookworm-minbase-$arch"
+suite=bookworm
+if [[ "$arch" == "$host_arch" && -r /etc/os-release ]]; then
+  codename=$(sed -n 's/^VERSION_CODENAME=["]\{0,1\}\([a-z]*\)["]\{0,1\}$/\1/p' /etc/os-release)  # read, not sourced
+  [[ -n "$codename" ]] && suite=$codename
+fi
+root="$cache/$suite-minbase"
+[[ "$arch" == "$host_arch" ]] || root="$cache/$suite-minbase-$arch"
 
 skip() { echo "bare_root: cannot make a bare Debian root: $*" >&2; exit 77; }
 
@@ -40,11 +48,11 @@ rm -rf "$cache"/.partial-* 2>/dev/null
 log="$root.debootstrap.log"  # one per root
 made=0
 if [[ "$arch" == "$host_arch" ]]; then
-  debootstrap --variant=minbase bookworm "$tmp" "$mirror" > "$log" 2>&1 && made=1
+  debootstrap --variant=minbase "$suite" "$tmp" "$mirror" > "$log" 2>&1 && made=1
 else
   [[ -e /proc/sys/fs/binfmt_misc/qemu-aarch64 || "$arch" != arm64 ]] ||
     skip "aarch64 programs cannot run here (binfmt_misc has no qemu-aarch64: scripts/platform-check arm64 registers it)"
-  debootstrap --arch "$arch" --foreign --variant=minbase bookworm "$tmp" "$mirror" > "$log" 2>&1 &&
+  debootstrap --arch "$arch" --foreign --variant=minbase "$suite" "$tmp" "$mirror" > "$log" 2>&1 &&
     chroot "$tmp" /debootstrap/debootstrap --second-stage >> "$log" 2>&1 && made=1
 fi
 if (( ! made )); then
