@@ -1,6 +1,7 @@
 #pragma once
 // One logical device with its compute queue: what every buffer, pipeline and submission of a
 // Vulkan backend hangs off. Owns the instance it was created from.
+#include <algorithm>
 #include <memory>
 #include <string>
 
@@ -24,6 +25,12 @@ public:
     std::uint32_t queue_family() const { return static_cast<std::uint32_t>(physical_.compute_family); }
     const PhysicalDevice& physical() const { return physical_; }
     const VkPhysicalDeviceLimits& limits() const { return physical_.properties.limits; }
+    // The widest one-dimensional work-group a pipeline may ask for, and the subgroup width (>= 1):
+    // what both the scoring and the Sobel shapes start from.
+    std::uint32_t max_linear_group() const {
+        return std::min(limits().maxComputeWorkGroupInvocations, limits().maxComputeWorkGroupSize[0]);
+    }
+    std::uint32_t subgroup_lanes() const { return std::max<std::uint32_t>(physical_.subgroup.subgroupSize, 1); }
 
     // Host-visible device-local memory is used directly (lavapipe, integrated GPUs); otherwise data
     // goes through host-visible staging buffers and copy commands. BackendOptions.vulkan.force_staging

@@ -23,8 +23,8 @@ namespace {
 NccDeviceLimits ncc_device_limits(const Context& ctx) {
     const auto& lim = ctx.limits();
     NccDeviceLimits limits;
-    limits.max_group_size = std::min(lim.maxComputeWorkGroupInvocations, lim.maxComputeWorkGroupSize[0]);
-    limits.lanes = std::max<std::uint32_t>(ctx.physical().subgroup.subgroupSize, 1);
+    limits.max_group_size = ctx.max_linear_group();
+    limits.lanes = ctx.subgroup_lanes();
     limits.local_memory_bytes = lim.maxComputeSharedMemorySize;
     // No memory of its own: every memory type is host memory as seen by the host's caches.
     const VkMemoryPropertyFlags host = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT | VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |

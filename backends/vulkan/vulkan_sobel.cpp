@@ -25,9 +25,9 @@ constexpr std::size_t kBandPixels = std::size_t(1) << 24;  // bounds the band bu
 WorkGroupLimits sobel_work_group_limits(const Context& ctx) {
     const auto& lim = ctx.limits();
     WorkGroupLimits limits;
-    limits.max_group_size = std::min(lim.maxComputeWorkGroupInvocations, lim.maxComputeWorkGroupSize[0]);
+    limits.max_group_size = ctx.max_linear_group();
     limits.max_group_y = lim.maxComputeWorkGroupSize[1];
-    limits.lanes = std::max<std::uint32_t>(ctx.physical().subgroup.subgroupSize, 1);
+    limits.lanes = ctx.subgroup_lanes();
     limits.compute_units = 0;  // Vulkan core has no such query
     return limits;
 }
