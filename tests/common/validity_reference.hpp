@@ -15,6 +15,7 @@
 
 #include "trn/error.hpp"
 #include "trn/io/image_io.hpp"
+#include "shared_data.hpp"
 
 namespace trn::test {
 
@@ -100,9 +101,8 @@ inline void check_validity_cases(const std::string& dir) {
             files.push_back(dir + "/" + name + "_adam7.png");
         }
     }
-    if (const char* data = std::getenv("TRN_SHARED_DATA"))
-        for (const char* f : {"/realflight2/orthomosaic.png", "/realflight3/map.png", "/orthophoto.png"})
-            if (std::filesystem::exists(std::string(data) + f)) files.push_back(std::string(data) + f);
+    for (const char* f : {"realflight2/orthomosaic.png", "realflight3/map.png", "orthophoto.png"})
+        if (const std::string p = shared_data(f); !p.empty()) files.push_back(p);
     for (const std::string& f : files)
         for (const std::optional<int> nodata : {std::optional<int>(), std::optional<int>(0), std::optional<int>(255), std::optional<int>(77)})
             expect_validity_as_reference(f, nodata);

@@ -16,6 +16,7 @@
 #include "checks.hpp"
 #include "trn/fixed_point.hpp"
 #include "trn/io/image_io.hpp"
+#include "../common/shared_data.hpp"
 
 namespace trn::conformance {
 namespace {
@@ -195,10 +196,10 @@ void masked_tiles(Backend& dut, Backend& ref) {
 
 // The real orthomosaic of ../shared/data/realflight2 (transparent no-data) with a real frame.
 void masked_real_orthomosaic(Backend& dut, Backend& ref) {
-    const char* dir = std::getenv("TRN_SHARED_DATA");
-    const std::string base = dir ? dir : "";
-    const std::string map_path = base + "/realflight2/orthomosaic.png", frame_path = base + "/realflight2/frames/frame_00000.png";
-    if (!dir || !std::filesystem::exists(map_path) || !std::filesystem::exists(frame_path))
+    const std::string base = trn::test::shared_data_dir().string();
+    const std::string map_path = trn::test::shared_data("realflight2/orthomosaic.png"),
+                      frame_path = trn::test::shared_data("realflight2/frames/frame_00000.png");
+    if (map_path.empty() || frame_path.empty())
         GTEST_SKIP() << "shared data not found (TRN_SHARED_DATA='" << base << "'): real orthomosaic case not run";
     // Read as every trnkit command reads maps (the device kit's build: libpng, no imgcodecs).
     const GrayImage grey = load_gray(map_path), alpha = load_validity(map_path), frame = load_gray(frame_path);

@@ -13,6 +13,7 @@
 #include "cases.hpp"
 #include "checks.hpp"
 #include "trn/io/image_io.hpp"
+#include "../common/shared_data.hpp"
 
 namespace trn::conformance {
 namespace {
@@ -212,10 +213,9 @@ void huge_map(Backend& dut, Backend& ref) {
 }
 
 void real_orthophoto(Backend& dut, Backend& ref) {
-    const char* dir = std::getenv("TRN_SHARED_DATA");
-    const std::string base = dir ? dir : "";
-    const std::string map_path = base + "/orthophoto.png", frame_path = base + "/realflight/frame_00000.png";
-    if (!dir || !std::filesystem::exists(map_path) || !std::filesystem::exists(frame_path))
+    const std::string base = trn::test::shared_data_dir().string();
+    const std::string map_path = trn::test::shared_data("orthophoto.png"), frame_path = trn::test::shared_data("realflight/frame_00000.png");
+    if (map_path.empty() || frame_path.empty())
         GTEST_SKIP() << "shared data not found (TRN_SHARED_DATA='" << base << "'): real orthophoto case not run";
     // Read as every trnkit command reads images (the device kit's build: libpng, no imgcodecs).
     const GrayImage map = load_gray(map_path), frame = load_gray(frame_path);

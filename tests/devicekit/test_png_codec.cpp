@@ -14,6 +14,7 @@
 #include "../common/validity_reference.hpp"
 #include "trn/error.hpp"
 #include "trn/io/image_io.hpp"
+#include "../common/shared_data.hpp"
 
 namespace fs = std::filesystem;
 
@@ -51,8 +52,7 @@ cv::Mat noise(int rows, int cols, int type, unsigned seed) {
 }  // namespace
 
 TEST(DeviceKitPng, RealMapsAndFramesReadAsOpenCvReadsThem) {
-    const char* dir = std::getenv("TRN_SHARED_DATA");
-    const fs::path base = dir ? dir : "";
+    const fs::path base = trn::test::shared_data_dir();
     std::vector<fs::path> files = {base / "orthophoto.png", base / "realflight/frame_00000.png",
                                    base / "realflight2/orthomosaic.png", base / "realflight2/frames/frame_00000.png"};
     int found = 0;

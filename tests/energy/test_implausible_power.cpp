@@ -15,6 +15,7 @@
 #include "trn/energy/parsers.hpp"
 #include "trn/energy/run_report.hpp"
 #include "trn/error.hpp"
+#include "../common/shared_data.hpp"
 
 namespace trn::energy {
 namespace {
@@ -112,8 +113,7 @@ TEST(ImplausiblePower, CeilingPerSourceAndNegativeReadings) {
 }
 
 std::string powerlogs() {
-    const char* d = std::getenv("TRN_SHARED_DATA");
-    const std::string p = d ? std::string(d) + "/powerlogs" : "";
+    const std::string p = trn::test::shared_data("powerlogs");
     return !p.empty() && std::filesystem::is_directory(p) ? p : "";
 }
 

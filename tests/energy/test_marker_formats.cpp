@@ -10,6 +10,7 @@
 
 #include "trn/energy/run_report.hpp"
 #include "trn/error.hpp"
+#include "../common/shared_data.hpp"
 
 namespace trn::energy {
 namespace {
@@ -126,9 +127,8 @@ TEST(LogMarkers, PmtStartEndMarkersAreTheFrames) {
 }
 
 TEST(LogMarkers, RealPmtDumpIntegratesWithoutAMarkerFile) {
-    const char* d = std::getenv("TRN_SHARED_DATA");
-    const std::string log = d ? std::string(d) + "/powerlogs/pmt/nlesc_ps3results_rtx4000ada_pmt-nvml.log" : "";
-    if (log.empty() || !fs::exists(log)) GTEST_SKIP() << "TRN_SHARED_DATA/powerlogs/pmt not found: real PMT dump unavailable";
+    const std::string log = trn::test::shared_data("powerlogs/pmt/nlesc_ps3results_rtx4000ada_pmt-nvml.log");
+    if (log.empty()) GTEST_SKIP() << "TRN_SHARED_DATA/powerlogs/pmt not found: real PMT dump unavailable";
     const RunReport r = integrate_files(log, "auto", {}, "", IntegrateRequest{});
     ASSERT_EQ(r.frames.size(), 4u);  // 8 M lines: 4 start/end pairs
     for (const auto& f : r.frames) {

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "../cli/cli_process.hpp"
+#include "../common/shared_data.hpp"
 
 namespace {
 namespace fs = std::filesystem;
@@ -34,8 +35,7 @@ const PmtLog kNvml{"nlesc_ps3results_rtx4000ada_pmt-nvml.log", "rtx4000ada-nvml"
 const PmtLog kRocm{"nlesc_ps3results_w7700_pmt-rocm.log", "w7700-rocm", "device"};
 
 fs::path pmt_folder() {
-    const char* d = std::getenv("TRN_SHARED_DATA");
-    return d && *d ? fs::path(d) / "powerlogs" / "pmt" : fs::path();
+    return trn::test::shared_data("powerlogs/pmt");
 }
 
 json read_json(const fs::path& p) {

@@ -12,16 +12,15 @@
 #include "trn/error.hpp"
 #include "trn/energy/integrate.hpp"
 #include "trn/energy/parsers.hpp"
+#include "../common/shared_data.hpp"
 
 using namespace trn::energy;
 
 namespace {
 
 std::string powerlogs() {
-    const char* d = std::getenv("TRN_SHARED_DATA");
-    if (!d) return "";
-    const std::string p = std::string(d) + "/powerlogs";
-    return std::filesystem::is_directory(p) ? p : "";
+    const std::string p = trn::test::shared_data("powerlogs");
+    return !p.empty() && std::filesystem::is_directory(p) ? p : "";
 }
 
 #define NEED_LOGS()                                                                                   \

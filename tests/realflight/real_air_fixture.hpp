@@ -19,14 +19,14 @@
 
 #include "../cli/cli_process.hpp"
 #include "../common/csv_rows.hpp"
+#include "../common/shared_data.hpp"
 
 namespace trn::test {
 
 class RealAirFolder : public testing::Test {
 protected:
     static std::string data() {
-        const char* d = std::getenv("TRN_SHARED_DATA");
-        return d ? d : "";
+        return trn::test::shared_data_dir().string();
     }
     // Built once per trnkit executable and shared by the test processes (ctest runs each test in
     // its own): `register` takes ~15 s on a loaded machine. Keyed by the executable's time stamp so

@@ -25,14 +25,14 @@
 #include "../common/csv_rows.hpp"
 #include "trn/error.hpp"
 #include "trn/registry.hpp"
+#include "../common/shared_data.hpp"
 
 namespace {
 
 class RealFlight2 : public testing::Test {
 protected:
     static std::string data() {
-        const char* d = std::getenv("TRN_SHARED_DATA");
-        return d ? std::string(d) + "/realflight2" : "";
+        return trn::test::shared_data("realflight2");
     }
     static std::string air() { return testing::TempDir() + "/realflight2_air_" + std::to_string(::getpid()); }
     static std::string map() { return data() + "/orthomosaic.png"; }

@@ -17,12 +17,12 @@
 #include <nlohmann/json.hpp>
 
 #include "../cli/cli_process.hpp"
+#include "../common/shared_data.hpp"
 
 namespace {
 
 std::string data() {
-    const char* d = std::getenv("TRN_SHARED_DATA");
-    return d ? std::string(d) + "/realflight3" : "";
+    return trn::test::shared_data("realflight3");
 }
 
 class RealFlight3 : public testing::Test {

@@ -14,6 +14,7 @@
 #include "../cli/cli_process.hpp"
 #include "trn/error.hpp"
 #include "trn/registry.hpp"
+#include "../common/shared_data.hpp"
 
 class RealFlightLocalize : public testing::TestWithParam<const char*> {};
 
@@ -24,9 +25,8 @@ TEST_P(RealFlightLocalize, FilterMeanErrorAtMostHalfTheOdometryOn4Of5Seeds) {
     } catch (const trn::BackendUnavailable& e) {
         GTEST_SKIP() << backend << " NOT AVAILABLE: " << e.what();
     }
-    const char* d = std::getenv("TRN_SHARED_DATA");
-    const std::string data = d ? d : "";
-    if (data.empty() || !std::filesystem::exists(data + "/realflight/frame_00000.png"))
+    const std::string data = trn::test::shared_data_dir().string();
+    if (trn::test::shared_data("realflight/frame_00000.png").empty())
         GTEST_SKIP() << "TRN_SHARED_DATA/realflight not found: real flight unavailable";
     const std::string air = testing::TempDir() + "/realflight_localize_air_" + backend, map = data + "/orthophoto.png";
     std::filesystem::remove_all(air);

@@ -15,16 +15,15 @@
 #include "trn/error.hpp"
 #include "trn/registry.hpp"
 #include "trn/detail/angles.hpp"
+#include "../common/shared_data.hpp"
 
 namespace {
 
 using trn::kPi;
 
 std::string shared_data() {
-    const char* d = std::getenv("TRN_SHARED_DATA");
-    if (!d) return "";
-    const std::string p(d);
-    return std::filesystem::exists(p + "/orthophoto.png") && std::filesystem::is_directory(p + "/realflight") ? p : "";
+    const std::string p = trn::test::shared_data_dir().string();
+    return !trn::test::shared_data("orthophoto.png").empty() && std::filesystem::is_directory(p + "/realflight") ? p : "";
 }
 
 #define NEED_DATA()                                   \

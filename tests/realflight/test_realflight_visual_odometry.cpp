@@ -12,6 +12,7 @@
 #include "trn/filter/frame_registration.hpp"
 #include "trn/filter/visual_odometry.hpp"
 #include "trn/io/image_io.hpp"
+#include "../common/shared_data.hpp"
 
 namespace {
 
@@ -21,9 +22,8 @@ struct RealFrames {
 };
 
 bool load(RealFrames& r) {
-    const char* d = std::getenv("TRN_SHARED_DATA");
-    const std::string dir = std::string(d ? d : "") + "/realflight";
-    if (!d || !std::filesystem::exists(dir + "/frame_00000.png")) return false;
+    const std::string dir = trn::test::shared_data("realflight");
+    if (dir.empty() || !std::filesystem::exists(dir + "/frame_00000.png")) return false;
     r.poses = trn::reg::read_pose_rows(TRN_POSES_CSV);
     for (const auto& p : r.poses) r.frames.push_back(trn::load_gray(dir + "/" + p.frame));
     return true;

@@ -9,6 +9,7 @@
 
 #include "../cli/cli_process.hpp"
 #include "trn/io/image_io.hpp"
+#include "../common/shared_data.hpp"
 
 namespace {
 
@@ -42,9 +43,8 @@ TEST(RegisterCli, NonFiniteAnchorRefused) {
 }
 
 TEST(RegisterCli, PoseThatIsNotTheBestFailsAndWritesNoAirFolder) {
-    const char* d = std::getenv("TRN_SHARED_DATA");
-    const std::string data = d ? d : "";
-    if (data.empty() || !std::filesystem::exists(data + "/realflight/frame_00008.png"))
+    const std::string data = trn::test::shared_data_dir().string();
+    if (trn::test::shared_data("realflight/frame_00008.png").empty())
         GTEST_SKIP() << "TRN_SHARED_DATA/realflight not found: real flight unavailable";
     // frame 8's committed pose (tests/data/realflight_poses.csv) moved 40 px along the road.
     const std::string csv = tmp("shifted.csv"), air = tmp("air");

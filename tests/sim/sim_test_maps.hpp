@@ -7,6 +7,7 @@
 
 #include "trn/error.hpp"
 #include "trn/sim/procedural_map.hpp"
+#include "../common/shared_data.hpp"
 
 namespace trn::sim::testing {
 
@@ -31,10 +32,8 @@ inline const Map& forest_map() {
 
 // The real orthophoto from TRN_SHARED_DATA, when present.
 inline std::optional<std::string> real_orthophoto() {
-    const char* dir = std::getenv("TRN_SHARED_DATA");
-    if (!dir) return std::nullopt;
-    const std::string path = std::string(dir) + "/orthophoto.png";
-    if (!std::filesystem::exists(path)) return std::nullopt;
+    const std::string path = trn::test::shared_data("orthophoto.png");
+    if (path.empty()) return std::nullopt;
     return path;
 }
 

@@ -14,6 +14,7 @@
 #include "trn/error.hpp"
 #include "trn/registry.hpp"
 #include "trn/sim/map.hpp"
+#include "../common/shared_data.hpp"
 
 namespace fs = std::filesystem;
 using trn::test::run_trnkit;
@@ -250,8 +251,7 @@ TEST_F(PhotoCli, LocalizePhotosRefusesWhatPhotosCannotGiveByName) {
 class RealFlight2PhotoCli : public PhotoCli {
 protected:
     static std::string data() {
-        const char* d = std::getenv("TRN_SHARED_DATA");
-        return d && *d ? std::string(d) + "/realflight2" : "";
+        return trn::test::shared_data("realflight2");
     }
     void SetUp() override {
         if (data().empty() || !fs::exists(data() + "/orthomosaic.png")) GTEST_SKIP() << "TRN_SHARED_DATA/realflight2 not found: second real flight unavailable";

@@ -19,6 +19,7 @@
 #include "trn/io/photo.hpp"
 #include "trn/sim/air_format.hpp"
 #include "trn/sim/photo_import.hpp"
+#include "../common/shared_data.hpp"
 
 namespace fs = std::filesystem;
 using trn::Error;
@@ -375,8 +376,7 @@ TEST(CameraSensors, TheTableKnowsTheRealFlightsCamera) {
 
 // realflight2's four photos against the frames made from them (area average to 455x341, then grey).
 TEST(RealFlight2Photos, ImportMatchesTheFramesMadeFromThem) {
-    const char* d = std::getenv("TRN_SHARED_DATA");
-    const fs::path data = d && *d ? fs::path(d) / "realflight2" : fs::path();
+    const fs::path data = trn::test::shared_data("realflight2");
     if (data.empty() || !fs::is_directory(data / "photos") || !fs::is_directory(data / "frames"))
         GTEST_SKIP() << "TRN_SHARED_DATA/realflight2/photos not found: realflight2 unavailable";
     const fs::path out = fs::temp_directory_path() / ("trn_realflight2_import_" + std::to_string(::getpid()));

@@ -20,6 +20,7 @@
 
 #include "../common/test_images.hpp"
 #include "trn/registry.hpp"
+#include "../common/shared_data.hpp"
 
 namespace trn {
 namespace {
@@ -147,8 +148,7 @@ std::vector<RealPose> real_poses() {
 }
 
 std::string shared_data() {
-    const char* d = std::getenv("TRN_SHARED_DATA");
-    return d && std::filesystem::exists(std::string(d) + "/realflight/frame_00000.png") ? d : "";
+    return trn::test::shared_data("realflight/frame_00000.png").empty() ? "" : trn::test::shared_data_dir().string();
 }
 
 // Every real frame at its committed pose (full size) against the ideal and OpenCV; then, with the
