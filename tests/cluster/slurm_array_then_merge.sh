@@ -94,6 +94,13 @@ MaxArraySize=3
 NodeName=$node NodeAddr=127.0.0.1 CPUs=$cpus State=UNKNOWN
 PartitionName=trntest Nodes=$node Default=YES MaxTime=INFINITE State=UP
 CONF
+# No cgroup use at all: Slurm 23.02 and newer (Debian 13 has 24.11) start the cgroup plugin in slurmd
+# even with proctrack/linuxproc and fail where /sys/fs/cgroup is not mounted (a chroot, a
+# container); 22.05 (Debian 12) has no "disabled" and needs no cgroup.conf.
+slurm_version=$(slurmd -V 2>/dev/null | awk '{print $2}')
+if [[ $slurm_version =~ ^([0-9]+)\.([0-9]+) ]] && (( BASH_REMATCH[1] * 100 + 10#${BASH_REMATCH[2]} >= 2302 )); then
+  echo "CgroupPlugin=disabled" >"$work/cgroup.conf"
+fi
 export SLURM_CONF=$work/slurm.conf
 
 start_daemon slurmctld -D -i -f "$SLURM_CONF" >"$work/slurmctld.out" 2>&1
