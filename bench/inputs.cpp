@@ -10,6 +10,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "../tests/common/shared_data.hpp"
 #include "../tests/common/test_images.hpp"
 #include "trn/error.hpp"
 #include "trn/io/image_io.hpp"
@@ -17,8 +18,8 @@
 namespace trn::bench {
 
 std::filesystem::path shared_data_path(const std::filesystem::path& relative) {
-    const char* dir = std::getenv("TRN_SHARED_DATA");
-    return dir && *dir ? std::filesystem::path(dir) / relative : std::filesystem::path();
+    const std::filesystem::path dir = trn::test::shared_data_dir();
+    return dir.empty() ? dir : dir / relative;
 }
 
 namespace {

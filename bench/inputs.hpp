@@ -15,7 +15,7 @@
 namespace trn::bench {
 
 // `relative` under $TRN_SHARED_DATA (the project's real data), or an empty path when the variable
-// is unset or empty: the one place the benchmarks read it.
+// is unset or empty (tests/common/shared_data.hpp reads the variable for tests and benchmarks).
 std::filesystem::path shared_data_path(const std::filesystem::path& relative);
 
 struct MapInput {

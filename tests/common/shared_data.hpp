@@ -1,7 +1,8 @@
 #pragma once
 // The real maps, flights and power logs of ../shared/data as the tests reach them: CTest sets
-// TRN_SHARED_DATA where that folder exists (tests/CMakeLists.txt). One home for the variable; a test
-// that finds nothing skips visibly, naming what it missed.
+// TRN_SHARED_DATA where that folder exists (tests/CMakeLists.txt). One home for the variable, for the
+// tests and the benchmarks (bench/inputs.cpp); a test that finds nothing skips visibly, naming what
+// it missed.
 #include <cstdlib>
 #include <filesystem>
 #include <string>
